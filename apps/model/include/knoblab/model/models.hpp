@@ -1,0 +1,73 @@
+// The knob models of the thesis as compositions of the torque terms.
+//   ThesisModel  — Eq. 6: inertia + asymmetric Coulomb/viscous + detents
+//   RenderModel  — Eq. 14: inertia + viscous + detents (no phase), with an
+//                  optional Karnopp stick band (Eq. 7)
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <string_view>
+
+#include "knoblab/model/terms.hpp"
+
+namespace knoblab::model {
+
+// Parameter order of the thesis model; also the order of the fit's vector
+// and the names the JSON output uses.
+enum ThesisParam : std::size_t {
+  kM_acc, kC_vel_neg, kB_vel_neg, kC_vel_pos, kB_vel_pos, kA_pos, kP_pos, kS_pos,
+  kThesisParamCount
+};
+inline constexpr std::array<std::string_view, kThesisParamCount> kThesisParamNames = {
+    "M_acc", "C_vel_neg", "B_vel_neg", "C_vel_pos", "B_vel_pos", "A_pos", "P_pos", "S_pos"};
+
+template <typename T>
+struct TorqueParts {
+  T acc{}, vel{}, pos{};
+  T total() const { return acc + vel + pos; }
+};
+
+template <typename T>
+struct ThesisModel {
+  Inertia<T> inertia;
+  CoulombViscous<T> friction;
+  Detents<T> detents;
+
+  static ThesisModel from_params(const T* p) {
+    ThesisModel m;
+    m.inertia.M = p[kM_acc];
+    m.friction = {p[kC_vel_neg], p[kB_vel_neg], p[kC_vel_pos], p[kB_vel_pos]};
+    m.detents.A = p[kA_pos];
+    m.detents.P = p[kP_pos];
+    m.detents.S = p[kS_pos];
+    return m;
+  }
+
+  TorqueParts<T> parts(const Kinematics<T>& k) const {
+    return {inertia.torque(k.alpha), friction.torque(k.omega), detents.torque(k.theta)};
+  }
+  T torque(const Kinematics<T>& k) const { return parts(k).total(); }
+};
+
+template <typename T>
+struct RenderModel {
+  Inertia<T> inertia;
+  T B_vel{};
+  Detents<T> detents;  // S stays 0 when rendering (Eq. 14)
+  bool stick_enabled = false;
+  KarnoppStick<T> stick;
+
+  CoulombViscous<T> sliding() const { return {T(0), B_vel, T(0), B_vel}; }
+
+  // tau_other is what the rest of the model asks for; it only matters for
+  // the stick band.
+  T torque(const Kinematics<T>& k) const {
+    const T pos = detents.torque(k.theta);
+    const T acc = inertia.torque(k.alpha);
+    const T vel = stick_enabled ? stick.torque(k.omega, pos + acc, sliding())
+                                : sliding().torque(k.omega);
+    return acc + vel + pos;
+  }
+};
+
+}  // namespace knoblab::model

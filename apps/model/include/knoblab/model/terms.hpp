@@ -1,0 +1,129 @@
+// Torque terms of the knob model: one definition per physics term.
+//
+// Every term is templated on the scalar type so the same code serves the
+// plant simulator (double), the renderer in hapticd (double, no allocation)
+// and the fitter (ceres::Jet for automatic differentiation).
+//
+// Sign convention (thesis Eq. 6 and Eq. 10): a term returns the torque needed
+// to move the knob, i.e. the torque the Haptic Camera's sensor reads. Friction
+// is C_pos + B_pos·ω for ω > 0 and −C_neg + B_neg·ω for ω < 0, with every
+// coefficient a positive magnitude for a dissipative knob.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+
+namespace knoblab::model {
+
+// sgn that also works for ceres::Jet (compares the value part only).
+template <typename T>
+T sgn(const T& x) {
+  if (x > T(0)) return T(1);
+  if (x < T(0)) return T(-1);
+  return T(0);
+}
+
+// The knob's motion at one instant: position (rad), velocity (rad/s),
+// acceleration (rad/s²).
+template <typename T>
+struct Kinematics {
+  T theta{};
+  T omega{};
+  T alpha{};
+};
+
+// τ_acc = M·θ̈ (Eq. 6, acceleration part). M in kg·m² (N·m per rad/s²).
+template <typename T>
+struct Inertia {
+  T M{};
+  T torque(const T& alpha) const { return M * alpha; }
+};
+
+// Asymmetric Coulomb + viscous friction (Eq. 6, velocity part).
+template <typename T>
+struct CoulombViscous {
+  T C_neg{}, B_neg{}, C_pos{}, B_pos{};
+  T torque(const T& omega) const {
+    if (omega > T(0)) return C_pos + B_pos * omega;
+    if (omega < T(0)) return -C_neg + B_neg * omega;
+    return T(0);
+  }
+};
+
+// Karnopp stick band (Eq. 7). Inside |ω| < dv the knob is taken as stuck:
+// friction balances the other torques up to the static limits D_neg / D_pos.
+// Outside the band the sliding law applies.
+template <typename T>
+struct KarnoppStick {
+  T dv{};     // rad/s, half-width of the zero-velocity band
+  T D_neg{};  // N·m, static friction magnitude for negative torque
+  T D_pos{};  // N·m, static friction magnitude for positive torque
+
+  bool sticking(const T& omega) const { return omega < dv && omega > -dv; }
+
+  // tau_other: the non-frictional torque currently applied to the knob.
+  T torque(const T& omega, const T& tau_other,
+           const CoulombViscous<T>& sliding) const {
+    if (!sticking(omega)) return sliding.torque(omega);
+    if (tau_other > D_pos) return D_pos;
+    if (tau_other < -D_neg) return -D_neg;
+    return tau_other;
+  }
+};
+
+// Sinusoidal detents A·sin(θ/P + S) (Eq. 6, position part), with optional
+// harmonics of the same period for non-sinusoidal detent shapes:
+//   Σ_k a_k·sin(k·φ) + b_k·cos(k·φ),  φ = θ/P + S,  k = 2 … kMaxHarmonic.
+// P is in rad per radian of phase: detents per revolution = 1/P.
+template <typename T>
+struct Detents {
+  static constexpr std::size_t kMaxHarmonic = 6;
+  T A{}, P{1}, S{};
+  std::array<T, kMaxHarmonic + 1> a{};  // a[k], b[k] for k >= 2; 0, 1 unused
+  std::array<T, kMaxHarmonic + 1> b{};
+
+  T phase(const T& theta) const { return theta / P + S; }
+  T torque(const T& theta) const {
+    using std::cos;
+    using std::sin;
+    const T phi = phase(theta);
+    T tau = A * sin(phi);
+    for (std::size_t k = 2; k <= kMaxHarmonic; ++k) {
+      if (a[k] != T(0) || b[k] != T(0)) {
+        const T kphi = T(static_cast<double>(k)) * phi;
+        tau += a[k] * sin(kphi) + b[k] * cos(kphi);
+      }
+    }
+    return tau;
+  }
+  double cycles_per_rev() const;  // defined for double below
+};
+
+template <>
+inline double Detents<double>::cycles_per_rev() const { return 1.0 / P; }
+
+// Restoring spring K·(θ−θ0) + K3·(θ−θ0)³ (a ramp, the thesis' K_pos·θ).
+template <typename T>
+struct Spring {
+  T K{}, theta0{}, K3{};
+  T torque(const T& theta) const {
+    const T d = theta - theta0;
+    return K * d + K3 * d * d * d;
+  }
+};
+
+// Walls: stiff spring and damper beyond [lo, hi], nothing inside.
+// The damper only acts while penetrating, so leaving a wall is not sticky.
+template <typename T>
+struct Walls {
+  T lo{-1e9}, hi{1e9};  // rad
+  T K{}, B{};           // N·m/rad, N·m·s/rad
+  T torque(const T& theta, const T& omega) const {
+    if (theta > hi) return K * (theta - hi) + B * omega;
+    if (theta < lo) return K * (theta - lo) + B * omega;
+    return T(0);
+  }
+};
+
+}  // namespace knoblab::model
