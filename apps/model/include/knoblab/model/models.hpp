@@ -59,12 +59,14 @@ struct RenderModel {
 
   CoulombViscous<T> sliding() const { return {T(0), B_vel, T(0), B_vel}; }
 
-  // tau_other is what the rest of the model asks for; it only matters for
-  // the stick band.
-  T torque(const Kinematics<T>& k) const {
+  // tau_applied: the torque the hand applies to the knob (the sensor's
+  // reading, or 0 where there is none). It only matters in the stick band,
+  // where friction holds the knob against what the other terms leave over:
+  // in the sensor convention τ = acc + vel + pos, so vel = τ − acc − pos.
+  T torque(const Kinematics<T>& k, const T& tau_applied = T(0)) const {
     const T pos = detents.torque(k.theta);
     const T acc = inertia.torque(k.alpha);
-    const T vel = stick_enabled ? stick.torque(k.omega, pos + acc, sliding())
+    const T vel = stick_enabled ? stick.torque(k.omega, tau_applied - pos - acc, sliding())
                                 : sliding().torque(k.omega);
     return acc + vel + pos;
   }

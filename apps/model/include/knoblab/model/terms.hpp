@@ -53,7 +53,10 @@ struct CoulombViscous {
 
 // Karnopp stick band (Eq. 7). Inside |ω| < dv the knob is taken as stuck:
 // friction balances the other torques up to the static limits D_neg / D_pos.
-// Outside the band the sliding law applies.
+// Outside the band the sliding law applies. Eq. 7 as printed bounds only one
+// side in each half of the band (max(D−, τ_other) for ω < 0, min(D+, τ_other)
+// for ω > 0); we bound both sides across the whole band, so a knob creeping
+// at −Δv/2 still cannot be held by more than D_pos when pushed forward.
 template <typename T>
 struct KarnoppStick {
   T dv{};     // rad/s, half-width of the zero-velocity band
@@ -74,14 +77,17 @@ struct KarnoppStick {
 
 // Sinusoidal detents A·sin(θ/P + S) (Eq. 6, position part), with optional
 // harmonics of the same period for non-sinusoidal detent shapes:
-//   Σ_k a_k·sin(k·φ) + b_k·cos(k·φ),  φ = θ/P + S,  k = 2 … kMaxHarmonic.
+//   Σ_k a_k·sin(k·φ) + b_k·cos(k·φ),  φ = θ/P + S,  k = 2 … harmonics.
 // P is in rad per radian of phase: detents per revolution = 1/P.
+// `harmonics` is structure, not a value: every harmonic up to it is always
+// evaluated, so a fitter can move a coefficient that starts at zero.
 template <typename T>
 struct Detents {
   static constexpr std::size_t kMaxHarmonic = 6;
   T A{}, P{1}, S{};
   std::array<T, kMaxHarmonic + 1> a{};  // a[k], b[k] for k >= 2; 0, 1 unused
   std::array<T, kMaxHarmonic + 1> b{};
+  std::size_t harmonics = 1;  // highest harmonic evaluated (1 = pure sine)
 
   T phase(const T& theta) const { return theta / P + S; }
   T torque(const T& theta) const {
@@ -89,19 +95,17 @@ struct Detents {
     using std::sin;
     const T phi = phase(theta);
     T tau = A * sin(phi);
-    for (std::size_t k = 2; k <= kMaxHarmonic; ++k) {
-      if (a[k] != T(0) || b[k] != T(0)) {
-        const T kphi = T(static_cast<double>(k)) * phi;
-        tau += a[k] * sin(kphi) + b[k] * cos(kphi);
-      }
+    const std::size_t top = harmonics < kMaxHarmonic ? harmonics : kMaxHarmonic;
+    for (std::size_t k = 2; k <= top; ++k) {
+      const T kphi = T(static_cast<double>(k)) * phi;
+      tau += a[k] * sin(kphi) + b[k] * cos(kphi);
     }
     return tau;
   }
-  double cycles_per_rev() const;  // defined for double below
 };
 
-template <>
-inline double Detents<double>::cycles_per_rev() const { return 1.0 / P; }
+// Detents per revolution of a detent period P.
+inline double cycles_per_rev(const Detents<double>& d) { return 1.0 / d.P; }
 
 // Restoring spring K·(θ−θ0) + K3·(θ−θ0)³ (a ramp, the thesis' K_pos·θ).
 template <typename T>

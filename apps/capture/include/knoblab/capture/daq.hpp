@@ -1,0 +1,30 @@
+// The DAQ seam (like ros2_control's hardware_interface): the loop calls
+// read() → update → write() once per cycle. The sim backend and real boards
+// sit behind the same interface, so the loop never knows which it drives.
+#pragma once
+
+#include <cstdint>
+
+namespace knoblab::capture {
+
+// Raw readings, in the units the board delivers.
+struct DaqInputs {
+  std::int64_t encoder_counts = 0;
+  double torque_V = 0.0;  // torque-sensor channel at the ADC
+  double accel_V = 0.0;   // accelerometer channel at the ADC
+};
+
+struct DaqOutputs {
+  double motor_command_V = 0.0;  // amplifier command (DAC)
+  bool amp_enable = false;
+};
+
+class Daq {
+ public:
+  virtual ~Daq() = default;
+  // Both are called from the realtime loop: no allocation, no blocking.
+  virtual void read(DaqInputs& in) = 0;
+  virtual void write(const DaqOutputs& out) = 0;
+};
+
+}  // namespace knoblab::capture

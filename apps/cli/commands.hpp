@@ -1,0 +1,28 @@
+// The knoblab subcommands. Each returns the process exit code and throws
+// UsageError (exit 2) or any std::exception (exit 1) with a clear message.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "args.hpp"
+
+namespace knoblab::cli {
+
+struct Command {
+  const CommandSpec& spec;
+  int (*run)(const Args&);
+};
+
+const std::vector<Command>& commands();
+
+extern const CommandSpec kSimulateSpec, kImportSpec, kExportSpec, kInspectSpec, kDemoSpec,
+    kListSpec;
+int run_simulate(const Args&);
+int run_import(const Args&);
+int run_export(const Args&);
+int run_inspect(const Args&);
+int run_demo(const Args&);
+int run_list(const Args&);
+
+}  // namespace knoblab::cli

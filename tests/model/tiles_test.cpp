@@ -1,0 +1,106 @@
+// Prototyper tiles, Eq. 19 (position) and Eq. 20 (time), taken literally.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "knoblab/model/tiles.hpp"
+
+namespace knoblab::model {
+namespace {
+
+using V = std::vector<double>;
+
+CubicSpline line(double x0, double y0, double x1, double y1) {
+  return CubicSpline(V{x0, x1}, V{y0, y1});
+}
+
+TEST(PositionTile, IsEquation19InsideItsRange) {
+  PositionTile tile;
+  tile.theta_min = 0.0;
+  tile.theta_max = 1.0;
+  tile.f_pos = line(0.0, 2.0, 1.0, 4.0);   // stiffness 2 + 2θ
+  tile.f_vel = line(0.0, 0.1, 1.0, 0.1);   // damping 0.1
+  tile.f_acc = line(0.0, 0.0, 1.0, 0.02);  // mass 0.02θ
+  const Kinematics<double> k{0.5, -2.0, 10.0};
+  // f_pos(θ)·θ + f_vel(θ)·θ̇ + f_acc(θ)·θ̈ = 3·0.5 + 0.1·(−2) + 0.01·10
+  EXPECT_NEAR(tile.torque(k), 1.5 - 0.2 + 0.1, 1e-14);
+}
+
+TEST(PositionTile, ContributesNothingOutsideItsRange) {
+  PositionTile tile;
+  tile.theta_min = -0.5;
+  tile.theta_max = 0.5;
+  tile.f_pos = line(-0.5, 1.0, 0.5, 1.0);
+  EXPECT_DOUBLE_EQ(tile.torque({0.5, 0.0, 0.0}), 0.5);  // closed range
+  EXPECT_DOUBLE_EQ(tile.torque({-0.5, 0.0, 0.0}), -0.5);
+  EXPECT_EQ(tile.torque({0.5001, 3.0, 3.0}), 0.0);
+  EXPECT_EQ(tile.torque({-0.6, 3.0, 3.0}), 0.0);
+}
+
+TEST(PositionTile, AbsentFunctionsContributeNothing) {
+  PositionTile tile;
+  tile.theta_max = 1.0;
+  EXPECT_EQ(tile.torque({0.5, 1.0, 1.0}), 0.0);
+  tile.f_vel = line(0.0, 0.3, 1.0, 0.3);
+  EXPECT_DOUBLE_EQ(tile.torque({0.5, 2.0, 100.0}), 0.6);
+}
+
+TEST(PositionTile, PeriodicSplineRepeatsAcrossAWideRange) {
+  PositionTile tile;
+  tile.theta_min = -10.0;
+  tile.theta_max = 10.0;
+  tile.f_vel = CubicSpline(V{0.0, 0.25, 0.5, 0.75, 1.0}, V{1.0, 2.0, 1.0, 0.0, 1.0},
+                           SplineBoundary::kPeriodic);
+  EXPECT_NEAR(tile.torque({0.25, 1.0, 0.0}), 2.0, 1e-12);
+  EXPECT_NEAR(tile.torque({7.25, 1.0, 0.0}), 2.0, 1e-12);
+  EXPECT_NEAR(tile.torque({-3.75, 1.0, 0.0}), 2.0, 1e-12);
+}
+
+TEST(TimeTile, IsEquation20WhileActive) {
+  TimeTile tile;
+  tile.duration = 2.0;
+  tile.f_pos = line(0.0, 0.0, 2.0, 4.0);  // 2t
+  tile.f_vel = line(0.0, 1.0, 2.0, 1.0);
+  const Kinematics<double> k{0.3, 0.5, 7.0};
+  EXPECT_NEAR(tile.torque(1.0, k), 2.0 * 0.3 + 0.5, 1e-14);
+  EXPECT_NEAR(tile.torque(2.0, k), 4.0 * 0.3 + 0.5, 1e-14);
+  EXPECT_EQ(tile.torque(2.01, k), 0.0);
+  EXPECT_EQ(tile.torque(-0.01, k), 0.0);
+}
+
+TEST(TimeTile, LoopsWhenAsked) {
+  TimeTile tile;
+  tile.duration = 2.0;
+  tile.loop = true;
+  tile.f_pos = line(0.0, 0.0, 2.0, 4.0);
+  const Kinematics<double> k{1.0, 0.0, 0.0};
+  EXPECT_NEAR(tile.torque(5.0, k), tile.torque(1.0, k), 1e-14);
+  EXPECT_NEAR(*tile.local_time(4.5), 0.5, 1e-14);
+  EXPECT_FALSE(tile.local_time(-1.0).has_value());
+  tile.duration = 0.0;
+  EXPECT_FALSE(tile.local_time(0.0).has_value());
+}
+
+TEST(Tiles, TotalTorqueSumsTiles) {
+  std::vector<PositionTile> pos(2);
+  pos[0].theta_min = 0.0;
+  pos[0].theta_max = 1.0;
+  pos[0].f_vel = line(0.0, 1.0, 1.0, 1.0);
+  pos[1].theta_min = 0.5;
+  pos[1].theta_max = 2.0;
+  pos[1].f_acc = line(0.5, 2.0, 2.0, 2.0);
+  const Kinematics<double> k{0.75, 3.0, 5.0};
+  EXPECT_DOUBLE_EQ(total_torque(pos, k), 3.0 + 10.0);
+  EXPECT_DOUBLE_EQ(total_torque(pos, Kinematics<double>{1.5, 3.0, 5.0}), 10.0);
+
+  std::vector<TimeTile> time(2);
+  time[0].duration = 1.0;
+  time[0].f_vel = line(0.0, 1.0, 1.0, 1.0);
+  time[1].duration = 3.0;
+  time[1].f_vel = line(0.0, 2.0, 3.0, 2.0);
+  EXPECT_DOUBLE_EQ(total_torque(time, 0.5, k), 9.0);
+  EXPECT_DOUBLE_EQ(total_torque(time, 2.0, k), 6.0);
+}
+
+}  // namespace
+}  // namespace knoblab::model
