@@ -1,0 +1,43 @@
+// One captured (or simulated) knob run: time-aligned channels in SI units.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace knoblab::interchange {
+
+// Column names of the CSV format, in the order write_csv emits them.
+inline constexpr std::array<std::string_view, 6> kChannelNames = {
+    "t", "theta", "omega", "alpha", "torque", "command"};
+
+struct Capture {
+  // `# key: value` lines, in file order. An empty key is a free comment.
+  std::vector<std::pair<std::string, std::string>> metadata;
+
+  std::vector<double> t;       // s, strictly increasing
+  std::vector<double> theta;   // rad
+  std::vector<double> omega;   // rad/s
+  std::vector<double> alpha;   // rad/s²
+  std::vector<double> torque;  // N·m
+  std::vector<double> command; // V; empty unless has_command
+
+  bool has_command = false;
+  bool omega_derived = false;  // omega was absent from the file
+  bool alpha_derived = false;  // alpha was absent from the file
+
+  std::size_t size() const { return t.size(); }
+
+  // Value of the first metadata entry with this key, or nullptr.
+  const std::string* find_metadata(std::string_view key) const;
+};
+
+// Throws std::invalid_argument naming the first problem: channels of unequal
+// length, fewer than 3 rows, non-finite values, t not strictly increasing.
+// Everything that passes can be written and read back by the CSV code.
+void validate(const Capture& capture);
+
+}  // namespace knoblab::interchange

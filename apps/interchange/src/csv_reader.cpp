@@ -1,0 +1,306 @@
+// CSV reading: header → column map, rows → channels, then derive what is
+// missing. Every rejection is a CsvError with line and field numbers.
+#include <array>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "knoblab/interchange/csv.hpp"
+#include "knoblab/model/filters.hpp"
+#include "line_reader.hpp"
+
+namespace knoblab::interchange {
+
+CsvError::CsvError(std::string source, std::size_t line, std::size_t column, std::string reason)
+    : std::runtime_error([&] {
+        std::string m = source;
+        if (line > 0) m += ":" + std::to_string(line);
+        if (line > 0 && column > 0) m += ":" + std::to_string(column);
+        return m + ": " + reason;
+      }()),
+      source_(std::move(source)),
+      line_(line),
+      column_(column),
+      reason_(std::move(reason)) {}
+
+namespace {
+
+enum Channel : std::size_t { kT, kTheta, kOmega, kAlpha, kTorque, kCommand, kChannelCount };
+
+std::string_view trim(std::string_view s) {
+  const auto ws = [](char c) { return c == ' ' || c == '\t'; };
+  while (!s.empty() && ws(s.front())) s.remove_prefix(1);
+  while (!s.empty() && ws(s.back())) s.remove_suffix(1);
+  return s;
+}
+
+void split(std::string_view line, std::vector<std::string_view>& fields) {
+  fields.clear();
+  for (;;) {
+    const auto comma = line.find(',');
+    fields.push_back(trim(line.substr(0, comma)));
+    if (comma == std::string_view::npos) return;
+    line.remove_prefix(comma + 1);
+  }
+}
+
+// A field for an error message: quoted, shortened, non-printables escaped.
+std::string quote(std::string_view s) {
+  constexpr std::size_t kMax = 40;
+  std::string out = "\"";
+  for (std::size_t i = 0; i < s.size() && i < kMax; ++i) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    if (c >= 0x20 && c < 0x7f && c != '"' && c != '\\') {
+      out += static_cast<char>(c);
+    } else {
+      static constexpr char kHex[] = "0123456789abcdef";
+      out += "\\x";
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+    }
+  }
+  if (s.size() > kMax) out += "...";
+  return out + "\"";
+}
+
+std::string allowed_list() {
+  std::string s;
+  for (auto name : kChannelNames) s += (s.empty() ? "" : ", ") + std::string(name);
+  return s;
+}
+
+enum class NumError { kNone, kEmpty, kNotANumber, kNotFinite, kOutOfRange };
+
+NumError parse_number(std::string_view f, double& out) {
+  if (f.empty()) return NumError::kEmpty;
+  std::string_view digits = f;
+  // from_chars rejects '+'; other writers emit it, so accept one.
+  if (digits.front() == '+' && digits.size() > 1 && digits[1] != '-' && digits[1] != '+')
+    digits.remove_prefix(1);
+  const char* end = digits.data() + digits.size();
+  const auto [ptr, ec] = std::from_chars(digits.data(), end, out);
+  if (ec == std::errc::result_out_of_range) return NumError::kOutOfRange;
+  if (ec != std::errc() || ptr != end) return NumError::kNotANumber;
+  if (!std::isfinite(out)) return NumError::kNotFinite;
+  return NumError::kNone;
+}
+
+// ';' or a tab inside a trimmed field means the file uses another delimiter.
+std::optional<char> foreign_delimiter(const std::vector<std::string_view>& fields) {
+  for (auto f : fields)
+    for (char c : f)
+      if (c == ';' || c == '\t') return c;
+  return std::nullopt;
+}
+
+std::string delimiter_message(char c) {
+  return std::string("expected ',' delimiter, found ") + (c == '\t' ? "'\\t' (tab)" : "';'");
+}
+
+class Parser {
+ public:
+  Parser(std::istream& in, std::string source) : source_(std::move(source)), lines_(in, source_) {}
+
+  Capture run() {
+    read_preamble();
+    read_rows();
+    finish();
+    return std::move(cap_);
+  }
+
+ private:
+  [[noreturn]] void fail(std::size_t line, std::size_t column, std::string reason) const {
+    throw CsvError(source_, line, column, std::move(reason));
+  }
+  std::size_t line_no() const { return lines_.line_number(); }
+
+  // Metadata comments (and blank lines) up to and including the header.
+  void read_preamble() {
+    std::size_t budget = 0;
+    for (bool first = true;; first = false) {
+      if (!lines_.next(line_)) {
+        if (line_no() == 0)
+          fail(1, 0, "empty file: expected a header line such as 't,theta,torque'");
+        fail(line_no(), 0, "no header line after the metadata comments");
+      }
+      std::string_view sv = line_;
+      if (first && sv.starts_with("\xEF\xBB\xBF")) sv.remove_prefix(3);  // UTF-8 BOM
+      budget += line_.size() + 1;
+      if (budget > kMaxMetadataBytes)
+        fail(line_no(), 0, "no header line within the first " +
+                               std::to_string(kMaxMetadataBytes) + " bytes");
+      sv = trim(sv);
+      if (sv.empty()) continue;
+      if (sv.front() == '#') {
+        add_metadata(sv.substr(1));
+        continue;
+      }
+      parse_header(sv);
+      return;
+    }
+  }
+
+  void add_metadata(std::string_view body) {
+    body = trim(body);
+    const auto colon = body.find(':');
+    if (colon == std::string_view::npos)
+      cap_.metadata.emplace_back("", std::string(body));  // free comment
+    else
+      cap_.metadata.emplace_back(std::string(trim(body.substr(0, colon))),
+                                 std::string(trim(body.substr(colon + 1))));
+  }
+
+  void parse_header(std::string_view header) {
+    header_line_ = line_no();
+    split(header, fields_);
+    if (auto c = foreign_delimiter(fields_)) fail(header_line_, 0, delimiter_message(*c));
+    std::array<std::size_t, kChannelCount> seen{};  // column (1-based) per channel, 0 = absent
+    for (std::size_t i = 0; i < fields_.size(); ++i) {
+      const auto name = fields_[i];
+      const std::size_t col = i + 1;
+      if (name.empty()) fail(header_line_, col, "empty column name");
+      std::size_t ch = 0;
+      while (ch < kChannelCount && kChannelNames[ch] != name) ++ch;
+      if (ch == kChannelCount) {
+        double ignored;
+        if (parse_number(name, ignored) == NumError::kNone)
+          fail(header_line_, col, "expected a header line naming the columns (" + allowed_list() +
+                                      "), found the number " + quote(name));
+        fail(header_line_, col,
+             "unknown column " + quote(name) + " (allowed: " + allowed_list() + ")");
+      }
+      if (seen[ch] != 0)
+        fail(header_line_, col, "duplicate column '" + std::string(name) + "' (also column " +
+                                    std::to_string(seen[ch]) + ")");
+      seen[ch] = col;
+      columns_.push_back(ch);
+    }
+    std::string missing;
+    std::size_t n_missing = 0;
+    for (std::size_t ch : {kT, kTheta, kTorque})
+      if (seen[ch] == 0) {
+        missing += (missing.empty() ? "'" : ", '") + std::string(kChannelNames[ch]) + "'";
+        ++n_missing;
+      }
+    if (n_missing > 0)
+      fail(header_line_, 0, std::string(n_missing == 1 ? "missing required column "
+                                                       : "missing required columns ") +
+                                missing + " (t, theta and torque are required)");
+    cap_.has_command = seen[kCommand] != 0;
+    cap_.omega_derived = seen[kOmega] == 0;
+    cap_.alpha_derived = seen[kAlpha] == 0;
+    t_col_ = seen[kT];
+  }
+
+  std::vector<double>& channel(std::size_t ch) {
+    switch (ch) {
+      case kT: return cap_.t;
+      case kTheta: return cap_.theta;
+      case kOmega: return cap_.omega;
+      case kAlpha: return cap_.alpha;
+      case kTorque: return cap_.torque;
+      default: return cap_.command;
+    }
+  }
+
+  void read_rows() {
+    std::vector<std::vector<double>*> dest;
+    for (std::size_t ch : columns_) dest.push_back(&channel(ch));
+    const std::size_t n = columns_.size();
+    std::size_t blank_line = 0, blanks = 0, prev_t_line = 0;
+    double prev_t = 0;
+    while (lines_.next(line_)) {
+      const std::string_view sv = trim(line_);
+      if (sv.empty()) {
+        // Trailing empty lines are fine; a long run of them is garbage.
+        if (blank_line == 0) blank_line = line_no();
+        if (++blanks > 64) fail(line_no(), 0, "too many empty lines");
+        continue;
+      }
+      if (blank_line != 0) fail(blank_line, 0, "empty line inside the data");
+      if (sv.front() == '#') fail(line_no(), 0, "comment lines must come before the header");
+      split(sv, fields_);
+      if (fields_.size() != n) {
+        if (auto c = foreign_delimiter(fields_)) fail(line_no(), 0, delimiter_message(*c));
+        if (fields_.size() < n)
+          fail(line_no(), 0, "truncated line: expected " + std::to_string(n) + " fields, found " +
+                                 std::to_string(fields_.size()));
+        fail(line_no(), n + 1, "too many fields: expected " + std::to_string(n) + ", found " +
+                                   std::to_string(fields_.size()));
+      }
+      for (std::size_t i = 0; i < n; ++i) {
+        double v = 0;
+        const NumError e = parse_number(fields_[i], v);
+        if (e != NumError::kNone) field_error(e, i);
+        dest[i]->push_back(v);
+      }
+      const double t = cap_.t.back();
+      if (prev_t_line != 0 && !(t > prev_t))
+        fail(line_no(), t_col_, "column 't': time not strictly increasing: " +
+                                    std::string(fields_[t_col_ - 1]) + " at line " +
+                                    std::to_string(line_no()) + " after " + format(prev_t) +
+                                    " at line " + std::to_string(prev_t_line));
+      prev_t = t;
+      prev_t_line = line_no();
+    }
+  }
+
+  [[noreturn]] void field_error(NumError e, std::size_t i) const {
+    const std::string prefix = "column '" + std::string(kChannelNames[columns_[i]]) + "': ";
+    const auto f = fields_[i];
+    switch (e) {
+      case NumError::kEmpty: fail(line_no(), i + 1, prefix + "empty field");
+      case NumError::kNotFinite: fail(line_no(), i + 1, prefix + "not finite: " + quote(f));
+      case NumError::kOutOfRange:
+        fail(line_no(), i + 1, prefix + "out of double range: " + quote(f));
+      default:
+        if (auto c = foreign_delimiter(fields_)) fail(line_no(), 0, delimiter_message(*c));
+        fail(line_no(), i + 1, prefix + "not a number: " + quote(f));
+    }
+  }
+
+  static std::string format(double v) {
+    char buf[32];
+    const auto r = std::to_chars(buf, buf + sizeof buf, v);
+    return std::string(buf, r.ptr);
+  }
+
+  void finish() {
+    const std::size_t rows = cap_.t.size();
+    if (rows < kMinRows)
+      fail(line_no(), 0, "need at least " + std::to_string(kMinRows) + " data rows, found " +
+                             std::to_string(rows));
+    if (cap_.omega_derived) cap_.omega = model::derivative(cap_.t, cap_.theta);
+    if (cap_.alpha_derived) cap_.alpha = model::derivative(cap_.t, cap_.omega);
+  }
+
+  std::string source_;
+  detail::LineReader lines_;
+  Capture cap_;
+  std::string line_;
+  std::vector<std::string_view> fields_;
+  std::vector<std::size_t> columns_;  // channel of each field
+  std::size_t header_line_ = 0, t_col_ = 0;
+};
+
+}  // namespace
+
+Capture parse_csv(std::istream& in, std::string_view source_name) {
+  return Parser(in, std::string(source_name)).run();
+}
+
+Capture read_csv(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw CsvError(path.string(), 0, 0, "is a directory, not a CSV file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw CsvError(path.string(), 0, 0, std::string("cannot open: ") + std::strerror(errno));
+  return parse_csv(in, path.string());
+}
+
+}  // namespace knoblab::interchange

@@ -1,0 +1,113 @@
+// CSV writing: shortest round-trip numbers, and an atomic replace on disk.
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <charconv>
+#include <fstream>
+#include <ostream>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+
+#include "knoblab/interchange/csv.hpp"
+
+namespace knoblab::interchange {
+
+namespace {
+
+bool has_control(std::string_view s) {
+  for (char c : s)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) return true;
+  return false;
+}
+
+// Refuse metadata that would read back differently (or break the format).
+void check_metadata(const Capture& c) {
+  for (const auto& [key, value] : c.metadata) {
+    const auto bad = [&](const char* why) {
+      throw std::invalid_argument("metadata '" + key + "' cannot be written: " + why);
+    };
+    if (has_control(key) || has_control(value)) bad("contains a line break or control character");
+    if (key.find(':') != std::string::npos) bad("key contains ':'");
+    if (key.empty() && value.find(':') != std::string::npos)
+      bad("a free comment (empty key) must not contain ':'");
+  }
+}
+
+[[noreturn]] void throw_errno(const std::string& what) {
+  throw std::system_error(errno, std::generic_category(), what);
+}
+
+}  // namespace
+
+void write_csv(const Capture& c, std::ostream& out) {
+  validate(c);
+  check_metadata(c);
+  for (const auto& [key, value] : c.metadata)
+    out << "# " << (key.empty() ? value : key + ": " + value) << '\n';
+
+  const std::vector<double>* cols[] = {&c.t, &c.theta, &c.omega, &c.alpha, &c.torque, &c.command};
+  const std::size_t ncols = c.has_command ? 6 : 5;
+  for (std::size_t j = 0; j < ncols; ++j) out << (j ? "," : "") << kChannelNames[j];
+  out << '\n';
+
+  // 6 fields × at most 24 chars each for a shortest-form double.
+  char row[6 * 32];
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    char* p = row;
+    for (std::size_t j = 0; j < ncols; ++j) {
+      if (j) *p++ = ',';
+      p = std::to_chars(p, row + sizeof row, (*cols[j])[i]).ptr;
+    }
+    *p++ = '\n';
+    out.write(row, p - row);
+  }
+  out.flush();
+  if (!out) throw std::system_error(std::make_error_code(std::errc::io_error), "write_csv");
+}
+
+void write_csv(const Capture& c, const std::filesystem::path& path) {
+  // Validate first so a bad capture never even creates the temp file.
+  validate(c);
+  check_metadata(c);
+
+  // Same directory, so rename() is atomic; O_EXCL so concurrent writers never share one.
+  static std::atomic<unsigned> counter{0};
+  const std::filesystem::path tmp =
+      path.string() + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
+  int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  if (fd < 0) throw_errno("cannot create " + tmp.string());
+  ::close(fd);
+
+  try {
+    {
+      std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+      if (!out) throw_errno("cannot open " + tmp.string());
+      write_csv(c, out);
+      out.close();
+      if (!out) throw std::system_error(std::make_error_code(std::errc::io_error),
+                                        "writing " + tmp.string());
+    }
+    // Data on disk before the rename makes it visible.
+    fd = ::open(tmp.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) throw_errno("cannot reopen " + tmp.string());
+    const int rc = ::fsync(fd);
+    ::close(fd);
+    if (rc != 0) throw_errno("fsync " + tmp.string());
+    if (::rename(tmp.c_str(), path.c_str()) != 0) throw_errno("cannot rename to " + path.string());
+  } catch (...) {
+    ::unlink(tmp.c_str());
+    throw;
+  }
+  // Persist the rename itself; best effort (some filesystems refuse dir fsync).
+  const auto dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd >= 0) {
+    ::fsync(fd);
+    ::close(fd);
+  }
+}
+
+}  // namespace knoblab::interchange

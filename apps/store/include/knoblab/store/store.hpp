@@ -1,0 +1,90 @@
+// The knoblab database: one sqlite file in WAL mode holding knobs, captures
+// with their samples, and fits. Typical use:
+//
+//   auto store = Store::open("knoblab.db");
+//   auto w = store.begin_capture({.knob = "fan", .rate_hz = 10000, .source = "hapticd"});
+//   for (...) w.append(sample);
+//   w.finish();
+//   interchange::write_csv(store.load_samples(w.capture_id()), "fan.csv");
+//
+// A Store is one connection: use it from one thread at a time. Several
+// processes may open the same file; sqlite serialises their writes.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "knoblab/interchange/capture.hpp"
+#include "knoblab/store/capture_writer.hpp"
+#include "knoblab/store/error.hpp"
+#include "knoblab/store/sqlite.hpp"
+#include "knoblab/store/types.hpp"
+
+namespace knoblab::store {
+
+struct OpenOptions {
+  int busy_timeout_ms = 5000;  // wait this long for another writer's lock
+  bool recover = true;         // run recover_interrupted() after opening
+};
+
+class Store {
+ public:
+  // Opens (creating if needed) and migrates the schema. Throws StoreError,
+  // e.g. for a database written by a newer knoblab.
+  static Store open(const std::filesystem::path& path, const OpenOptions& options = {});
+
+  Store(Store&&) noexcept;
+  Store& operator=(Store&&) noexcept;
+  ~Store();
+
+  int schema_version();
+
+  // Marks captures left 'recording' by a process that no longer exists as
+  // 'incomplete' (their committed samples stay). Returns their ids.
+  std::vector<std::int64_t> recover_interrupted();
+
+  // Id of the knob with this name, creating it if needed.
+  std::int64_t knob_id(std::string_view name, std::string_view description = {});
+  std::vector<KnobInfo> list_knobs();
+
+  // Inserts a 'recording' capture row and returns its writer.
+  CaptureWriter begin_capture(const NewCapture& info, WriterOptions options = {});
+
+  // All of `capture` as one 'complete' capture, in one transaction: on any
+  // error nothing is left behind. Throws std::invalid_argument for a capture
+  // interchange::validate() rejects, StoreError for database failures.
+  std::int64_t import_capture(const interchange::Capture& capture, const NewCapture& info);
+
+  std::vector<CaptureInfo> list_captures();  // by id
+  std::optional<CaptureInfo> capture_info(std::int64_t id);
+
+  // Committed samples in order; metadata carries the capture's fields
+  // (capture_id, knob, mode, rate_hz, source, status, times, sample_count,
+  // stimulus, orientation, calibration, metadata). Throws for an unknown id.
+  // Note: sqlite stores -0.0 as 0.0; all other values come back bit-exact.
+  interchange::Capture load_samples(std::int64_t id);
+
+  // With its samples and fits. Refuses a capture still 'recording'.
+  void delete_capture(std::int64_t id);
+
+  std::int64_t insert_fit(std::int64_t capture_id, std::string_view model,
+                          std::string_view params_json, std::string_view result_json = "{}");
+  std::vector<FitInfo> list_fits(std::int64_t capture_id);
+
+  std::string integrity_check();  // "ok" when sqlite finds nothing wrong
+
+  sqlite::Connection& connection() { return *db_; }
+
+ private:
+  explicit Store(std::shared_ptr<sqlite::Connection> db);
+
+  // Shared with the writers, so a writer outliving its Store stays valid.
+  std::shared_ptr<sqlite::Connection> db_;
+};
+
+}  // namespace knoblab::store

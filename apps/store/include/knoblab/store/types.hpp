@@ -1,0 +1,58 @@
+// Plain records the store takes and returns. JSON fields are strings the
+// caller builds; the database checks them with json_valid.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace knoblab::store {
+
+// One row of a capture, SI units. command is stored only when the capture
+// was begun with has_command.
+struct Sample {
+  double t = 0, theta = 0, omega = 0, alpha = 0, torque = 0, command = 0;
+};
+
+// What the caller says about a capture it records or imports.
+struct NewCapture {
+  std::string knob;                 // knob name, created if new; empty = no knob
+  std::string mode = "lab";         // 'lab' | 'tripod'
+  double rate_hz = 0;               // > 0; import: 0 = estimate from t
+  std::string stimulus = "{}";      // JSON
+  std::string orientation = "{}";   // JSON, e.g. axis tilt
+  std::string calibration = "{}";   // JSON: C_cal, gravity A..D, torque offset, ...
+  std::string source;               // 'simulate', 'hapticd', ...; import: empty = 'import'
+  bool has_command = false;         // import: taken from the Capture instead
+  std::string metadata;             // JSON object; empty = '{}' (import: the CSV's comments)
+};
+
+// A capture row as stored.
+struct CaptureInfo {
+  std::int64_t id = 0;
+  std::optional<std::int64_t> knob_id;
+  std::string knob;  // name, empty if none
+  std::string mode;
+  double rate_hz = 0;
+  std::string stimulus, orientation, calibration, source;
+  std::string status;  // 'recording' | 'complete' | 'incomplete'
+  std::optional<std::int64_t> writer_pid;
+  bool has_command = false;
+  std::string started_at;                  // ISO 8601 UTC
+  std::optional<std::string> finished_at;  // ISO 8601 UTC
+  std::int64_t sample_count = 0;           // committed samples
+  std::string metadata;
+};
+
+struct KnobInfo {
+  std::int64_t id = 0;
+  std::string name, description, created_at;
+};
+
+struct FitInfo {
+  std::int64_t id = 0;
+  std::int64_t capture_id = 0;
+  std::string model, params, result, created_at;
+};
+
+}  // namespace knoblab::store

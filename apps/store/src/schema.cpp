@@ -1,0 +1,109 @@
+// The migration list. Never edit a released step: append a new one.
+#include "knoblab/store/schema.hpp"
+
+#include <array>
+#include <string>
+
+namespace knoblab::store {
+
+namespace {
+
+#define KNOBLAB_NOW "(strftime('%Y-%m-%dT%H:%M:%fZ', 'now'))"
+
+constexpr std::array kMigrations = {
+    // 1: the tables. JSON columns are checked with json_valid so a caller's
+    // bad string fails at insert time, not when someone reads it years later.
+    R"sql(
+CREATE TABLE knobs (
+  id          INTEGER PRIMARY KEY,
+  name        TEXT NOT NULL UNIQUE CHECK (length(name) > 0),
+  description TEXT NOT NULL DEFAULT '',
+  created_at  TEXT NOT NULL DEFAULT )sql" KNOBLAB_NOW R"sql(
+);
+CREATE TABLE captures (
+  id           INTEGER PRIMARY KEY,
+  knob_id      INTEGER REFERENCES knobs(id) ON DELETE RESTRICT,
+  mode         TEXT NOT NULL CHECK (mode IN ('lab', 'tripod')),
+  rate_hz      REAL NOT NULL CHECK (rate_hz > 0),
+  stimulus     TEXT NOT NULL DEFAULT '{}' CHECK (json_valid(stimulus)),
+  orientation  TEXT NOT NULL DEFAULT '{}' CHECK (json_valid(orientation)),
+  calibration  TEXT NOT NULL DEFAULT '{}' CHECK (json_valid(calibration)),
+  source       TEXT NOT NULL CHECK (length(source) > 0),
+  status       TEXT NOT NULL CHECK (status IN ('recording', 'complete', 'incomplete')),
+  writer_pid   INTEGER,
+  writer_boot  TEXT,
+  has_command  INTEGER NOT NULL DEFAULT 0 CHECK (has_command IN (0, 1)),
+  started_at   TEXT NOT NULL DEFAULT )sql" KNOBLAB_NOW R"sql(,
+  finished_at  TEXT,
+  sample_count INTEGER NOT NULL DEFAULT 0 CHECK (sample_count >= 0),
+  metadata     TEXT NOT NULL DEFAULT '{}' CHECK (json_valid(metadata))
+);
+CREATE TABLE samples (
+  capture_id INTEGER NOT NULL REFERENCES captures(id) ON DELETE CASCADE,
+  idx        INTEGER NOT NULL,
+  t          REAL NOT NULL,
+  theta      REAL NOT NULL,
+  omega      REAL NOT NULL,
+  alpha      REAL NOT NULL,
+  torque     REAL NOT NULL,
+  command    REAL,
+  PRIMARY KEY (capture_id, idx)
+) WITHOUT ROWID;
+CREATE TABLE fits (
+  id         INTEGER PRIMARY KEY,
+  capture_id INTEGER NOT NULL REFERENCES captures(id) ON DELETE CASCADE,
+  model      TEXT NOT NULL CHECK (length(model) > 0),
+  params     TEXT NOT NULL CHECK (json_valid(params)),
+  result     TEXT NOT NULL DEFAULT '{}' CHECK (json_valid(result)),
+  created_at TEXT NOT NULL DEFAULT )sql" KNOBLAB_NOW R"sql(
+);
+)sql",
+    // 2: indexes for the foreign keys (cascading deletes would scan without
+    // them) and for recovery's "status = 'recording'" lookup on every open.
+    R"sql(
+CREATE INDEX captures_by_knob ON captures(knob_id);
+CREATE INDEX captures_by_status ON captures(status);
+CREATE INDEX fits_by_capture ON fits(capture_id);
+)sql",
+};
+
+#undef KNOBLAB_NOW
+
+}  // namespace
+
+int schema_version(sqlite::Connection& db) {
+  return static_cast<int>(db.query_int("PRAGMA user_version"));
+}
+
+void check_schema_not_newer(int version) {
+  if (version > latest_schema_version())
+    throw StoreError("database schema version " + std::to_string(version) +
+                     " is newer than this knoblab understands (" +
+                     std::to_string(latest_schema_version()) +
+                     "); refusing to open it - upgrade knoblab");
+}
+
+int latest_schema_version() { return static_cast<int>(kMigrations.size()); }
+
+void migrate(sqlite::Connection& db, int target) {
+  check_schema_not_newer(schema_version(db));
+  for (int step = 1; step <= target; ++step) {
+    sqlite::Transaction tx(db);
+    // Recheck under the write lock: another process may have got here first.
+    const int version = schema_version(db);
+    check_schema_not_newer(version);
+    if (version >= step) continue;
+    try {
+      db.exec(kMigrations[static_cast<std::size_t>(step - 1)]);
+    } catch (const StoreError& e) {
+      throw StoreError("schema migration to version " + std::to_string(step) +
+                           " failed: " + e.what(),
+                       e.sqlite_code());
+    }
+    // PRAGMA takes no parameters; the value is our own integer.
+    db.exec("PRAGMA user_version = " + std::to_string(step));
+    tx.commit();
+  }
+}
+
+}  // namespace knoblab::store

@@ -1,0 +1,175 @@
+// Opening (pragmas, migrations), knobs, capture rows, fits.
+#include "knoblab/store/store.hpp"
+
+#include <sqlite3.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <stdexcept>
+#include <thread>
+
+#include "internal.hpp"
+#include "knoblab/store/schema.hpp"
+
+namespace knoblab::store {
+
+Store::Store(std::shared_ptr<sqlite::Connection> db) : db_(std::move(db)) {}
+Store::Store(Store&&) noexcept = default;
+Store& Store::operator=(Store&&) noexcept = default;
+Store::~Store() = default;
+
+namespace {
+
+// Switching to WAL needs an exclusive lock, and sqlite answers SQLITE_BUSY
+// at once (no busy handler) when another connection is opening the same
+// fresh file right now; so wait for our turn here.
+std::string enable_wal(sqlite::Connection& db, int timeout_ms) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
+  for (;;) {
+    try {
+      return db.query_text("PRAGMA journal_mode = WAL");
+    } catch (const StoreError& e) {
+      if ((e.sqlite_code() & 0xff) != SQLITE_BUSY || std::chrono::steady_clock::now() > deadline)
+        throw;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+}
+
+}  // namespace
+
+Store Store::open(const std::filesystem::path& path, const OpenOptions& options) {
+  auto db = std::make_shared<sqlite::Connection>(sqlite::Connection::open(path));
+  try {
+    db->exec("PRAGMA busy_timeout = " + std::to_string(options.busy_timeout_ms));
+    db->exec("PRAGMA foreign_keys = ON");
+    // Before anything writes: never touch a database from a newer knoblab.
+    check_schema_not_newer(store::schema_version(*db));
+    // WAL: readers (list, export) never block the capture writer.
+    const std::string mode = enable_wal(*db, options.busy_timeout_ms);
+    if (mode != "wal") throw StoreError("cannot switch to WAL journal mode (got '" + mode + "')");
+    // FULL: every committed batch is on disk, even across a power cut.
+    db->exec("PRAGMA synchronous = FULL");
+    migrate(*db);
+  } catch (const StoreError& e) {
+    throw StoreError(path.string() + ": " + e.what(), e.sqlite_code());
+  }
+  Store store(std::move(db));
+  if (options.recover) store.recover_interrupted();
+  return store;
+}
+
+int Store::schema_version() { return store::schema_version(*db_); }
+
+std::string Store::integrity_check() { return db_->query_text("PRAGMA integrity_check"); }
+
+// ---- knobs ----------------------------------------------------------------
+
+std::optional<std::int64_t> detail::resolve_knob(sqlite::Connection& db, std::string_view name,
+                                                 std::string_view description) {
+  if (name.empty()) return std::nullopt;
+  db.prepare("INSERT INTO knobs (name, description) VALUES (?1, ?2) ON CONFLICT (name) DO NOTHING")
+      .bind_text(1, name)
+      .bind_text(2, description)
+      .run();
+  auto st = db.prepare("SELECT id FROM knobs WHERE name = ?1");
+  st.bind_text(1, name);
+  if (!st.step()) throw StoreError("knob '" + std::string(name) + "' vanished");
+  return st.column_int(0);
+}
+
+std::int64_t Store::knob_id(std::string_view name, std::string_view description) {
+  if (name.empty()) throw std::invalid_argument("knob name must not be empty");
+  sqlite::Transaction tx(*db_);
+  const auto id = *detail::resolve_knob(*db_, name, description);
+  tx.commit();
+  return id;
+}
+
+std::vector<KnobInfo> Store::list_knobs() {
+  std::vector<KnobInfo> knobs;
+  auto st = db_->prepare("SELECT id, name, description, created_at FROM knobs ORDER BY id");
+  while (st.step())
+    knobs.push_back({st.column_int(0), st.column_text(1), st.column_text(2), st.column_text(3)});
+  return knobs;
+}
+
+// ---- captures -------------------------------------------------------------
+
+std::int64_t detail::insert_capture_row(sqlite::Connection& db, const NewCapture& info,
+                                        std::string_view status, bool has_command) {
+  const auto knob = resolve_knob(db, info.knob);
+  auto st = db.prepare(
+      "INSERT INTO captures (knob_id, mode, rate_hz, stimulus, orientation, calibration, source,"
+      " status, writer_pid, writer_boot, has_command, metadata)"
+      " VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)");
+  if (knob)
+    st.bind_int(1, *knob);
+  else
+    st.bind_null(1);
+  st.bind_text(2, info.mode)
+      .bind_double(3, info.rate_hz)
+      .bind_text(4, info.stimulus)
+      .bind_text(5, info.orientation)
+      .bind_text(6, info.calibration)
+      .bind_text(7, info.source)
+      .bind_text(8, status);
+  if (status == "recording") {
+    st.bind_int(9, ::getpid());
+    const auto boot = boot_id();
+    if (!boot.empty()) st.bind_text(10, boot);  // else stays NULL
+  }
+  st.bind_int(11, has_command ? 1 : 0);
+  st.bind_text(12, info.metadata.empty() ? std::string_view("{}") : info.metadata);
+  st.run();
+  return db.last_insert_rowid();
+}
+
+CaptureWriter Store::begin_capture(const NewCapture& info, WriterOptions options) {
+  if (options.batch_size == 0) throw std::invalid_argument("batch_size must be at least 1");
+  if (info.source.empty())
+    throw std::invalid_argument("NewCapture.source is required (e.g. 'simulate', 'hapticd')");
+  sqlite::Transaction tx(*db_);
+  const auto id = detail::insert_capture_row(*db_, info, "recording", info.has_command);
+  tx.commit();
+  return CaptureWriter(db_, id, info.has_command, std::move(options));
+}
+
+void Store::delete_capture(std::int64_t id) {
+  sqlite::Transaction tx(*db_);
+  auto st = db_->prepare("SELECT status FROM captures WHERE id = ?1");
+  st.bind_int(1, id);
+  if (!st.step()) throw StoreError("no capture with id " + std::to_string(id));
+  if (st.column_text(0) == "recording")
+    throw StoreError("capture " + std::to_string(id) + " is still recording");
+  st.reset();
+  db_->prepare("DELETE FROM captures WHERE id = ?1").bind_int(1, id).run();
+  tx.commit();
+}
+
+// ---- fits -----------------------------------------------------------------
+
+std::int64_t Store::insert_fit(std::int64_t capture_id, std::string_view model,
+                               std::string_view params_json, std::string_view result_json) {
+  db_->prepare("INSERT INTO fits (capture_id, model, params, result) VALUES (?1, ?2, ?3, ?4)")
+      .bind_int(1, capture_id)
+      .bind_text(2, model)
+      .bind_text(3, params_json)
+      .bind_text(4, result_json)
+      .run();
+  return db_->last_insert_rowid();
+}
+
+std::vector<FitInfo> Store::list_fits(std::int64_t capture_id) {
+  std::vector<FitInfo> fits;
+  auto st = db_->prepare(
+      "SELECT id, capture_id, model, params, result, created_at FROM fits"
+      " WHERE capture_id = ?1 ORDER BY id");
+  st.bind_int(1, capture_id);
+  while (st.step())
+    fits.push_back({st.column_int(0), st.column_int(1), st.column_text(2), st.column_text(3),
+                    st.column_text(4), st.column_text(5)});
+  return fits;
+}
+
+}  // namespace knoblab::store

@@ -1,0 +1,69 @@
+// step() runs in the 10 kHz realtime loop: it must never allocate. Count
+// every global operator new while a flag is up.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <memory>
+#include <new>
+
+#include "knoblab/sim/plant.hpp"
+#include "knoblab/sim/presets.hpp"
+
+namespace {
+std::atomic<bool> g_counting{false};
+std::atomic<long> g_allocations{0};
+
+void* counted(std::size_t n) {
+  if (g_counting.load(std::memory_order_relaxed)) g_allocations.fetch_add(1);
+  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
+  throw std::bad_alloc();
+}
+}  // namespace
+
+void* operator new(std::size_t n) { return counted(n); }
+void* operator new[](std::size_t n) { return counted(n); }
+void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
+  if (g_counting.load(std::memory_order_relaxed)) g_allocations.fetch_add(1);
+  return std::malloc(n == 0 ? 1 : n);
+}
+void* operator new[](std::size_t n, const std::nothrow_t& t) noexcept { return operator new(n, t); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+
+using namespace knoblab::sim;
+
+namespace {
+class Drag : public KnobEffect {
+ public:
+  double torque(const KnobMotion& k, double) const override { return 1e-4 * k.omega; }
+};
+}  // namespace
+
+TEST(Realtime, CounterSeesAllocations) {
+  g_allocations = 0;
+  g_counting = true;
+  auto p = std::make_unique<int>(3);
+  g_counting = false;
+  EXPECT_EQ(g_allocations.load(), 1);
+}
+
+TEST(Realtime, StepDoesNotAllocate) {
+  for (const auto& preset : presets::all()) {
+    for (AmpMode mode : {AmpMode::Current, AmpMode::Voltage}) {
+      PlantConfig c;
+      c.knob = preset.knob;
+      c.amp.mode = mode;
+      Plant p(c);
+      p.add_effect(std::make_unique<Drag>());
+      g_allocations = 0;
+      g_counting = true;
+      for (int n = 0; n < 2000; ++n) p.step(6.0 * ((n / 500) % 2 ? -1.0 : 1.0), 1e-4);
+      p.step(1.0, 1e-3);  // a slower tick: more substeps
+      g_counting = false;
+      EXPECT_EQ(g_allocations.load(), 0) << preset.id;
+    }
+  }
+}

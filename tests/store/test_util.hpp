@@ -1,0 +1,66 @@
+// Shared by the store tests: temp dirs, deterministic samples, a checksum of
+// the whole database.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+
+#include "knoblab/store/sqlite.hpp"
+#include "knoblab/store/types.hpp"
+
+namespace knoblab::store::test {
+
+// A fresh directory per test, removed afterwards (ctest runs tests in parallel).
+class TempDir {
+ public:
+  TempDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = std::filesystem::temp_directory_path() /
+            ("knoblab_store_" + std::to_string(::getpid()) + "_" + info->test_suite_name() + "_" +
+             info->name());
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+  }
+  ~TempDir() { std::filesystem::remove_all(path_); }
+  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+// Sample idx of a synthetic capture: every value recomputable from idx alone.
+inline Sample sample_at(std::int64_t idx) {
+  const double i = static_cast<double>(idx);
+  // (No -0.0 anywhere: sqlite cannot keep its sign.)
+  return {i * 1e-4, std::sin(i * 1e-3), 0.25 + i * 0.5, -0.5 - i * 1e-3, 1.0 / (i + 1.0),
+          static_cast<double>(idx % 7) - 3.0};
+}
+
+// Row counts and a hash of every value of every table (and the schema).
+inline std::string checksum(sqlite::Connection& db) {
+  std::string out;
+  auto tables = db.prepare("SELECT name FROM sqlite_schema WHERE type = 'table' ORDER BY name");
+  std::size_t hash = std::hash<std::string>{}(db.query_text(
+      "SELECT group_concat(sql, ';') FROM (SELECT sql FROM sqlite_schema ORDER BY name)"));
+  while (tables.step()) {
+    const std::string name = tables.column_text(0);
+    auto rows = db.prepare("SELECT * FROM \"" + name + "\" ORDER BY 1, 2");
+    std::size_t count = 0;
+    while (rows.step()) {
+      ++count;
+      for (int c = 0; c < rows.column_count(); ++c)
+        hash = hash * 1000003u ^
+               std::hash<std::string>{}(rows.is_null(c) ? "\x01NULL" : rows.column_text(c));
+    }
+    out += name + "=" + std::to_string(count) + " ";
+  }
+  return out + "hash=" + std::to_string(hash);
+}
+
+}  // namespace knoblab::store::test
