@@ -1,18 +1,23 @@
 #include "knoblab/capture/calibration.hpp"
 
-#include <cstdio>
+#include <charconv>
 
 namespace knoblab::capture {
 
+namespace {
+// Shortest text that reads back as the same double.
+std::string num(double x) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  return std::string(buf, r.ptr);
+}
+}  // namespace
+
 std::string SensorCalibration::to_json() const {
-  char buf[512];
-  std::snprintf(buf, sizeof buf,
-                "{\"counts_per_rev\": %.17g, \"torque_Nm_per_V\": %.17g, "
-                "\"torque_offset_V\": %.17g, \"C_cal\": %.17g, "
-                "\"gravity\": {\"A\": %.17g, \"B\": %.17g, \"C\": %.17g, \"D\": %.17g}}",
-                counts_per_rev, torque_Nm_per_V, torque_offset_V, C_cal, grav_A, grav_B,
-                grav_C, grav_D);
-  return buf;
+  return "{\"counts_per_rev\": " + num(counts_per_rev) + ", \"torque_Nm_per_V\": " +
+         num(torque_Nm_per_V) + ", \"torque_offset_V\": " + num(torque_offset_V) +
+         ", \"C_cal\": " + num(C_cal) + ", \"gravity\": {\"A\": " + num(grav_A) +
+         ", \"B\": " + num(grav_B) + ", \"C\": " + num(grav_C) + ", \"D\": " + num(grav_D) + "}}";
 }
 
 }  // namespace knoblab::capture

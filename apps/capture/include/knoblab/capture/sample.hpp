@@ -1,15 +1,9 @@
-// One loop sample in SI units: what a capture records per cycle.
+// The loop records the interchange Sample: the same record the store and the
+// CSV hold, so nothing converts between look-alike structs.
 #pragma once
 
+#include "knoblab/interchange/sample.hpp"
+
 namespace knoblab::capture {
-
-struct Sample {
-  double t = 0.0;        // s since capture start
-  double theta = 0.0;    // rad, encoder
-  double omega = 0.0;    // rad/s, the loop's causal velocity estimate
-  double alpha = 0.0;    // rad/s², accelerometer, calibrated, gravity removed
-  double torque = 0.0;   // N·m, torque sensor, offset removed
-  double command = 0.0;  // V, amplifier command written this cycle
-};
-
+using interchange::Sample;
 }  // namespace knoblab::capture

@@ -6,13 +6,13 @@
 #include <optional>
 #include <string>
 
+#include "knoblab/interchange/sample.hpp"
+
 namespace knoblab::store {
 
-// One row of a capture, SI units. command is stored only when the capture
+// One row of a capture (SI units); command is stored only when the capture
 // was begun with has_command.
-struct Sample {
-  double t = 0, theta = 0, omega = 0, alpha = 0, torque = 0, command = 0;
-};
+using interchange::Sample;
 
 // What the caller says about a capture it records or imports.
 struct NewCapture {

@@ -1,0 +1,66 @@
+// knoblab inspect: a recording at a glance, and where its detents are.
+#include <cstdio>
+#include <numbers>
+#include <optional>
+
+#include "commands.hpp"
+#include "knoblab/interchange/csv.hpp"
+#include "knoblab/store/store.hpp"
+#include "summary.hpp"
+
+namespace knoblab::cli {
+
+const CommandSpec kInspectSpec{
+    "inspect", "FILE.csv | --capture ID --db FILE [--json]",
+    "Summarise a recording: length, rate, ranges, and the strongest position-periodic\n"
+    "torque (detents) as cycles per revolution from the torque-versus-position spectrum.",
+    {{"capture", true, "capture id in the store"},
+     {"db", true, "sqlite store"},
+     {"json", false, "print the summary as JSON (SI units)"}},
+    0, 1};
+
+int run_inspect(const Args& args) {
+  interchange::Capture capture;
+  std::string name;
+  if (!args.positionals().empty()) {
+    if (args.has("capture")) throw UsageError("give a FILE or --capture, not both");
+    name = args.positionals()[0];
+    capture = interchange::read_csv(name);
+  } else {
+    const std::string id = args.require("capture");
+    store::Store db = store::Store::open(args.require("db"));
+    capture = db.load_samples(std::stoll(id));
+    name = "capture " + id;
+  }
+  const CaptureSummary s = summarize(capture);
+  const double deg = 180.0 / std::numbers::pi;
+  if (args.has("json")) {
+    std::printf("{\"samples\": %zu, \"duration_s\": %.9g, \"mean_rate_hz\": %.9g, "
+                "\"theta_min_rad\": %.9g, \"theta_max_rad\": %.9g, \"torque_min_Nm\": %.9g, "
+                "\"torque_max_Nm\": %.9g, \"torque_rms_Nm\": %.9g, \"detent_cycles_per_rev\": ",
+                s.samples, s.duration_s, s.mean_rate_hz, s.theta_min, s.theta_max, s.torque_min,
+                s.torque_max, s.torque_rms);
+    if (s.detent_cycles_per_rev)
+      std::printf("%.9g, \"detent_amplitude_Nm\": %.9g, \"detent_power\": %.6g}\n",
+                  *s.detent_cycles_per_rev, s.detent_amplitude, s.detent_power);
+    else
+      std::printf("null}\n");
+    return 0;
+  }
+  std::printf("%s: %zu samples over %.3f s (mean rate %.1f Hz)\n", name.c_str(), s.samples,
+              s.duration_s, s.mean_rate_hz);
+  std::printf("  position   %.2f° … %.2f°\n", s.theta_min * deg, s.theta_max * deg);
+  std::printf("  velocity   up to %.2f °/s\n", s.omega_max_abs * deg);
+  std::printf("  torque     %.3f … %.3f mN·m, rms %.3f mN·m\n", s.torque_min * 1e3,
+              s.torque_max * 1e3, s.torque_rms * 1e3);
+  if (s.detent_cycles_per_rev)
+    std::printf("  spectrum   peak at %.2f cycles/rev (period %.2f°), amplitude %.3f mN·m, "
+                "explains %.0f%% of torque variance\n",
+                *s.detent_cycles_per_rev, 360.0 / *s.detent_cycles_per_rev, s.detent_amplitude * 1e3,
+                s.detent_power * 100);
+  else
+    std::printf("  spectrum   knob travelled less than one period of 64 cycles/rev: none\n");
+  return 0;
+}
+
+}  // namespace knoblab::cli

@@ -1,0 +1,41 @@
+// A Haptic Camera capture of a simulated knob: the thesis' swept-sine position
+// stimulus tracked by the PID through the plant simulator, run through the
+// same cycle (read → update → write) the realtime daemon runs.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "knoblab/capture/capture_controller.hpp"
+#include "knoblab/interchange/capture.hpp"
+#include "knoblab/sim/plant.hpp"
+#include "knoblab/store/store.hpp"
+
+namespace knoblab::cli {
+
+struct SimulationRequest {
+  std::string knob_name;  // preset id, or a label for a params file
+  sim::KnobParams knob;
+  double seconds = 5.0;      // thesis §2.2.1: 5 s
+  double rate_hz = 5000.0;   // thesis §2.2.1: 5 kHz
+  std::uint64_t seed = 1;
+  std::string mode = "lab";  // lab: axis horizontal on the lathe bed; tripod: any tilt
+  double tilt_rad = 0.0;     // tripod only: axis tilt from vertical
+  sim::AmpMode amp = sim::AmpMode::Current;
+  capture::PidGains pid{};
+  model::SweptSine stimulus = model::SweptSine::spatial();
+};
+
+struct SimulationResult {
+  interchange::Capture capture;  // every sample, with metadata
+  std::optional<std::int64_t> capture_id;  // when written to a store
+  double tracking_rms_rad = 0.0;  // PID tracking error over the capture
+  double max_command_V = 0.0;
+};
+
+// Runs the capture; when `db` is given the samples go into it in committed
+// batches while the loop runs (as hapticd's writer does).
+SimulationResult simulate(const SimulationRequest& request, store::Store* db);
+
+}  // namespace knoblab::cli

@@ -1,0 +1,39 @@
+// Running the knoblab binary from a test, and scratch directories.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <sys/types.h>
+#include <vector>
+
+namespace knoblab::test {
+
+struct RunResult {
+  int exit_code = -1;  // -1 when killed by a signal
+  std::string out, err;
+};
+
+// Runs knoblab with these arguments and waits for it.
+RunResult run_knoblab(const std::vector<std::string>& args);
+
+// Starts knoblab in the background (output discarded); returns its pid.
+pid_t spawn_knoblab(const std::vector<std::string>& args);
+
+// A fresh directory under /tmp, removed with everything in it at scope exit.
+class ScratchDir {
+ public:
+  ScratchDir();
+  ~ScratchDir();
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+std::string read_file(const std::filesystem::path& path);
+void write_file(const std::filesystem::path& path, const std::string& text);
+
+}  // namespace knoblab::test
