@@ -1,24 +1,19 @@
 #include "simulation.hpp"
 
-#include <charconv>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 
 #include "knoblab/capture/cycle.hpp"
 #include "knoblab/capture/sim_daq.hpp"
+#include "knoblab/interchange/number_text.hpp"
 #include "knoblab/sim/knob.hpp"
 
 namespace knoblab::cli {
 
 namespace {
 
-// Shortest text that reads back as the same double.
-std::string fmt(double x) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, x);
-  return std::string(buf, r.ptr);
-}
+std::string fmt(double x) { return interchange::shortest(x); }
 
 std::string stimulus_json(const model::SweptSine& s) {
   return "{\"kind\": \"swept_sine\", \"equation\": 8, \"a\": " + fmt(s.a) + ", \"b\": " + fmt(s.b) +

@@ -1,16 +1,11 @@
 #include "knoblab/capture/calibration.hpp"
 
-#include <charconv>
+#include "knoblab/interchange/number_text.hpp"
 
 namespace knoblab::capture {
 
 namespace {
-// Shortest text that reads back as the same double.
-std::string num(double x) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, x);
-  return std::string(buf, r.ptr);
-}
+std::string num(double x) { return interchange::shortest(x); }
 }  // namespace
 
 std::string SensorCalibration::to_json() const {

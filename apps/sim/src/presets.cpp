@@ -69,9 +69,9 @@ std::array<Preset, 19> build() {
        study_knob(0, 0.06, 0, 0)},
       {"study2-high-inertia", "Table 19 #5: m = 0.38 mN·m/(rad/s²), free-spinning fishing reel",
        study_knob(0, 0.38, 0, 0)},
-      {"study2-few-detents", "Table 19 #6: 14 mN·m sin(2π·θ), 3-setting fan knob",
+      {"study2-few-detents", "Table 19 #6: 14 mN·m detents, a2 = 2π (1/rev), 3-setting fan knob",
        study_knob(0, 0, 14, 2 * kPi)},
-      {"study2-many-detents", "Table 19 #7: 14 mN·m sin(2π/3·θ), mouse scroll wheel",
+      {"study2-many-detents", "Table 19 #7: 14 mN·m detents, a2 = 2π/3 (3/rev), mouse scroll wheel",
        study_knob(0, 0, 14, 2 * kPi / 3)},
       {"study3-not-rendered", "Table 20 #1: no force feedback (control)", study_knob(0, 0, 0, 0)},
       {"study3-low-friction", "Table 20 #2: b = 2.6 mN·m/(rad/s), portable radio volume",
@@ -82,9 +82,9 @@ std::array<Preset, 19> build() {
        study_knob(0, 0.06, 0, 0)},
       {"study3-high-inertia", "Table 20 #5: m = 0.21 mN·m/(rad/s²), free-spinning fishing reel",
        study_knob(0, 0.21, 0, 0)},
-      {"study3-few-detents", "Table 20 #6: 7 mN·m sin(2π·θ), 3-setting fan knob",
+      {"study3-few-detents", "Table 20 #6: 7 mN·m detents, a2 = 2π (1/rev), 3-setting fan knob",
        study_knob(0, 0, 7, 2 * kPi)},
-      {"study3-many-detents", "Table 20 #7: 19 mN·m sin(2π/5·θ), mouse scroll wheel",
+      {"study3-many-detents", "Table 20 #7: 19 mN·m detents, a2 = 2π/5 (5/rev), mouse scroll wheel",
        study_knob(0, 0, 19, 2 * kPi / 5)},
   }};
 }
