@@ -171,7 +171,7 @@ TEST(StoreCrash, DeadOrOtherBootWritersAreMarkedIncomplete) {
       const auto id = db.last_insert_rowid();
       for (int i = 0; i < 7; ++i)
         db.exec("INSERT INTO samples VALUES (" + std::to_string(id) + ", " + std::to_string(i) +
-                ", " + std::to_string(i) + ", 0, 0, 0, 0, NULL)");
+                ", " + std::to_string(i) + ", 0, 0, 0, 0, NULL, 0)");
       return id;
     };
     dead_id = insert(dead, nullptr);

@@ -13,8 +13,8 @@ CaptureWriter::CaptureWriter(std::shared_ptr<sqlite::Connection> db, std::int64_
       has_command_(has_command),
       options_(std::move(options)),
       insert_(db_->prepare(
-          "INSERT INTO samples (capture_id, idx, t, theta, omega, alpha, torque, command)"
-          " VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8)")),
+          "INSERT INTO samples (capture_id, idx, t, theta, omega, alpha, torque, command, flags)"
+          " VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9)")),
       update_count_(db_->prepare("UPDATE captures SET sample_count = ?2 WHERE id = ?1")) {
   batch_.reserve(options_.batch_size);  // no allocation while capturing
   insert_.bind_int(1, id_);             // bindings survive the auto-reset after each row
@@ -76,6 +76,7 @@ void CaptureWriter::insert_batch() {
       insert_.bind_double(8, s.command);
     else
       insert_.bind_null(8);
+    insert_.bind_int(9, s.flags);
     insert_.run();
   }
 }

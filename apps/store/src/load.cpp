@@ -80,9 +80,10 @@ interchange::Capture Store::load_samples(std::int64_t id) {
   const auto n = static_cast<std::size_t>(info->sample_count);
   for (auto* v : {&c.t, &c.theta, &c.omega, &c.alpha, &c.torque}) v->reserve(n);
   if (c.has_command) c.command.reserve(n);
+  c.flags.reserve(n);
 
   auto st = db_->prepare(
-      "SELECT idx, t, theta, omega, alpha, torque, command FROM samples"
+      "SELECT idx, t, theta, omega, alpha, torque, command, flags FROM samples"
       " WHERE capture_id = ?1 ORDER BY idx");
   st.bind_int(1, id);
   std::int64_t expected = 0;
@@ -101,6 +102,7 @@ interchange::Capture Store::load_samples(std::int64_t id) {
                          std::to_string(expected) + " has no command value");
       c.command.push_back(st.column_double(6));
     }
+    c.flags.push_back(static_cast<std::uint32_t>(st.column_int(7)));
     ++expected;
   }
   tx.commit();

@@ -65,6 +65,20 @@ CREATE INDEX captures_by_knob ON captures(knob_id);
 CREATE INDEX captures_by_status ON captures(status);
 CREATE INDEX fits_by_capture ON fits(capture_id);
 )sql",
+    // 3: the loop's per-sample state (amp enable, e-stop, fault: SampleFlag
+    // bits) and the biometrics box's 32 Hz samples recorded beside a capture.
+    R"sql(
+ALTER TABLE samples ADD COLUMN flags INTEGER NOT NULL DEFAULT 0;
+CREATE TABLE biometrics (
+  capture_id       INTEGER NOT NULL REFERENCES captures(id) ON DELETE CASCADE,
+  seq              INTEGER NOT NULL,
+  t                REAL NOT NULL,
+  emg_corrugator   REAL NOT NULL,
+  emg_depressor    REAL NOT NULL,
+  skin_conductance REAL NOT NULL,
+  PRIMARY KEY (capture_id, seq)
+) WITHOUT ROWID;
+)sql",
 };
 
 #undef KNOBLAB_NOW

@@ -160,6 +160,35 @@ std::int64_t Store::insert_fit(std::int64_t capture_id, std::string_view model,
   return db_->last_insert_rowid();
 }
 
+void Store::append_biometrics(std::int64_t capture_id, std::span<const BiometricSample> samples) {
+  sqlite::Transaction tx(*db_);
+  auto st = db_->prepare(
+      "INSERT INTO biometrics (capture_id, seq, t, emg_corrugator, emg_depressor, skin_conductance)"
+      " VALUES (?1, ?2, ?3, ?4, ?5, ?6)");
+  for (const BiometricSample& b : samples) {
+    st.bind_int(1, capture_id)
+        .bind_int(2, b.seq)
+        .bind_double(3, b.t)
+        .bind_double(4, b.emg_corrugator)
+        .bind_double(5, b.emg_depressor)
+        .bind_double(6, b.skin_conductance);
+    st.run();
+  }
+  tx.commit();
+}
+
+std::vector<BiometricSample> Store::load_biometrics(std::int64_t capture_id) {
+  std::vector<BiometricSample> out;
+  auto st = db_->prepare(
+      "SELECT seq, t, emg_corrugator, emg_depressor, skin_conductance FROM biometrics"
+      " WHERE capture_id = ?1 ORDER BY seq");
+  st.bind_int(1, capture_id);
+  while (st.step())
+    out.push_back({st.column_int(0), st.column_double(1), st.column_double(2), st.column_double(3),
+                   st.column_double(4)});
+  return out;
+}
+
 std::vector<FitInfo> Store::list_fits(std::int64_t capture_id) {
   std::vector<FitInfo> fits;
   auto st = db_->prepare(

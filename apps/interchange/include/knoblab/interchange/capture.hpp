@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -24,6 +25,7 @@ struct Capture {
   std::vector<double> alpha;   // rad/s²
   std::vector<double> torque;  // N·m
   std::vector<double> command; // V; empty unless has_command
+  std::vector<std::uint32_t> flags;  // Sample::flags from the store; empty from a CSV
 
   bool has_command = false;
   bool omega_derived = false;  // omega was absent from the file

@@ -2,6 +2,8 @@
 // store's samples table, and what the loop produces each cycle.
 #pragma once
 
+#include <cstdint>
+
 namespace knoblab::interchange {
 
 struct Sample {
@@ -11,6 +13,15 @@ struct Sample {
   double alpha = 0.0;    // rad/s², accelerometer, calibrated, gravity removed
   double torque = 0.0;   // N·m, torque sensor, offset removed
   double command = 0.0;  // V, amplifier command written this cycle
+  std::uint32_t flags = 0;  // loop state (SampleFlag bits); the store keeps it, the CSV does not
+};
+
+// Bits of Sample::flags: what the loop did and why, sample by sample.
+enum SampleFlag : std::uint32_t {
+  kAmpEnabled = 1u << 0,     // amplifier enable line driven high this cycle
+  kEstopActive = 1u << 1,    // e-stop input asserted
+  kFaultLatched = 1u << 2,   // the safety supervisor holds the safe state
+  kTorqueLimited = 1u << 3,  // the command was clipped to the torque limit
 };
 
 }  // namespace knoblab::interchange

@@ -16,6 +16,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -75,6 +76,10 @@ class Store {
   std::int64_t insert_fit(std::int64_t capture_id, std::string_view model,
                           std::string_view params_json, std::string_view result_json = "{}");
   std::vector<FitInfo> list_fits(std::int64_t capture_id);
+
+  // Biometrics recorded beside a capture, appended in one transaction.
+  void append_biometrics(std::int64_t capture_id, std::span<const BiometricSample> samples);
+  std::vector<BiometricSample> load_biometrics(std::int64_t capture_id);
 
   std::string integrity_check();  // "ok" when sqlite finds nothing wrong
 

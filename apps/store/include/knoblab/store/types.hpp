@@ -44,6 +44,15 @@ struct CaptureInfo {
   std::string metadata;
 };
 
+// One sample of the biometrics box (thesis §4.4.1.2, 32 Hz), SI units.
+struct BiometricSample {
+  std::int64_t seq = 0;           // the box's sample counter
+  double t = 0;                   // s, on the capture's clock
+  double emg_corrugator = 0;      // V
+  double emg_depressor = 0;       // V
+  double skin_conductance = 0;    // S
+};
+
 struct KnobInfo {
   std::int64_t id = 0;
   std::string name, description, created_at;
