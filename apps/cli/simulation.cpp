@@ -4,8 +4,8 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "knoblab/capture/cycle.hpp"
 #include "knoblab/capture/sim_daq.hpp"
+#include "knoblab/hapticd/core.hpp"
 #include "knoblab/interchange/number_text.hpp"
 #include "knoblab/sim/knob.hpp"
 
@@ -81,8 +81,28 @@ SimulationResult simulate(const SimulationRequest& r, store::Store* db) {
     writer.emplace(db->begin_capture(info));
   }
 
+  // hapticd's cycle, run back to back in simulated time: the same core, modes
+  // and supervisor the realtime daemon runs.
+  hapticd::CoreConfig core_cfg;
+  core_cfg.rate_hz = r.rate_hz;
+  core_cfg.calibration = cfg.calibration;
+  hapticd::HapticCore core(core_cfg);
+  hapticd::CoreCommand start;
+  start.kind = hapticd::CoreCommand::StartCapture;
+  start.capture = controller;
+  start.capture_cycles = cycles;
+  core.post(start);
+
   double sq_err = 0.0;
-  capture::run_cycles(daq, controller, cycles, [&](const capture::Sample& s) {
+  for (std::int64_t i = 0; i <= cycles; ++i) {
+    capture::DaqInputs in;
+    capture::DaqOutputs out;
+    hapticd::LoopRecord rec;
+    daq.read(in);
+    core.cycle(in, {}, 0, out, rec);
+    daq.write(out);
+    if (rec.recording_id == 0) continue;
+    const capture::Sample& s = rec.sample;
     cap.t.push_back(s.t);
     cap.theta.push_back(s.theta);
     cap.omega.push_back(s.omega);
@@ -93,7 +113,10 @@ SimulationResult simulate(const SimulationRequest& r, store::Store* db) {
     sq_err += e * e;
     result.max_command_V = std::max(result.max_command_V, std::abs(s.command));
     if (writer) writer->append(s);
-  });
+  }
+  if (static_cast<std::int64_t>(cap.t.size()) != cycles)
+    throw std::logic_error("the capture recorded " + std::to_string(cap.t.size()) + " of " +
+                           std::to_string(cycles) + " samples");
   if (writer) {
     writer->finish();
     result.capture_id = writer->capture_id();

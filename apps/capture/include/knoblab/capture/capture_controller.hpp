@@ -25,7 +25,7 @@ struct CaptureConfig {
 
 class CaptureController {
  public:
-  explicit CaptureController(const CaptureConfig& cfg);
+  explicit CaptureController(const CaptureConfig& cfg = {});
 
   // One cycle: raw inputs in, command out, the cycle's sample recorded.
   void update(const DaqInputs& in, DaqOutputs& out, Sample& sample);

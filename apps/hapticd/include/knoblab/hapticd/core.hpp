@@ -1,0 +1,103 @@
+// HapticCore: what one loop cycle does, whatever paces it. The realtime
+// daemon runs it under rt::PeriodicLoop; `knoblab simulate` runs the same
+// object back to back in simulated time. Modes are small controllers (idle,
+// render, capture); the supervisor has the last word on every output.
+//
+// Threads: commands arrive from non-realtime code through a lock-free queue
+// (post()); state leaves through atomics (state()). cycle() never allocates,
+// locks or blocks.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+
+#include "knoblab/capture/capture_controller.hpp"
+#include "knoblab/capture/daq.hpp"
+#include "knoblab/capture/sample.hpp"
+#include "knoblab/hapticd/render_controller.hpp"
+#include "knoblab/hapticd/supervisor.hpp"
+#include "knoblab/rt/spsc_ring.hpp"
+
+namespace knoblab::hapticd {
+
+enum class Mode : std::uint8_t { Idle, Render, Capture };
+const char* to_string(Mode m);
+
+// Digital inputs as the loop sees them (already active-high logic).
+struct LineInputs {
+  bool estop = false;
+  bool capture_button = false;
+};
+
+// What non-realtime code asks of the loop. Trivially copyable: it travels
+// through a lock-free ring. A capture controller is built (which allocates)
+// by the sender, not by the loop.
+struct CoreCommand {
+  enum Kind : std::uint8_t { SetMode, StartCapture, StopCapture, SetRender, StartRecording,
+                             StopRecording, ClearFault, ForceSafe } kind = SetMode;
+  Mode mode = Mode::Idle;
+  bool immediate = false;
+  RenderParams render{};
+  capture::CaptureController capture{};
+  std::int64_t capture_cycles = 0;
+};
+
+// One loop cycle's record: the sample and whether it belongs to a recording.
+struct LoopRecord {
+  capture::Sample sample;
+  std::uint32_t recording_id = 0;  // 0: not recording; else which recording
+  Mode mode = Mode::Idle;
+};
+
+struct CoreState {
+  Mode mode = Mode::Idle;
+  std::uint32_t faults = 0;        // latched Fault bits
+  std::uint32_t recording_id = 0;  // 0 when not recording
+  std::int64_t cycles = 0;
+};
+
+struct CoreConfig {
+  double rate_hz = 10000.0;
+  capture::SensorCalibration calibration{};
+  SafetyLimits limits{};
+  RenderConfig render{};  // rate and calibration are taken from above
+};
+
+class HapticCore {
+ public:
+  explicit HapticCore(const CoreConfig& cfg);
+
+  // Non-realtime side. False when the queue is full (retry later).
+  bool post(const CoreCommand& c) { return commands_.try_push(c); }
+  CoreState state() const;
+  // Faults raised by other threads (Modbus poller, watchdog): OR'ed in.
+  void raise(std::uint32_t fault_bits) { external_.fetch_or(fault_bits, std::memory_order_relaxed); }
+  void clear_external(std::uint32_t fault_bits) { external_.fetch_and(~fault_bits, std::memory_order_relaxed); }
+
+  // Realtime side: one cycle.
+  void cycle(const capture::DaqInputs& in, const LineInputs& lines, std::int64_t consecutive_overruns,
+             capture::DaqOutputs& out, LoopRecord& record);
+
+  const CoreConfig& config() const { return cfg_; }
+
+ private:
+  void apply(const CoreCommand& c);
+  void measure_idle(const capture::DaqInputs& in, capture::Sample& s);
+
+  CoreConfig cfg_;
+  rt::SpscRing<CoreCommand, 16> commands_;
+  RenderController render_;
+  capture::CaptureController capture_;
+  std::int64_t capture_left_ = 0;
+  Supervisor supervisor_;
+  Mode mode_ = Mode::Idle;
+  bool clear_requested_ = false;
+  std::uint32_t forced_ = 0;
+  std::uint32_t recording_ = 0, next_recording_ = 1;
+  std::int64_t cycles_ = 0;
+  std::atomic<std::uint32_t> external_{0};
+  std::atomic<std::uint64_t> published_{0};  // mode | faults | recording, see state()
+  std::atomic<std::int64_t> published_cycles_{0};
+};
+
+}  // namespace knoblab::hapticd

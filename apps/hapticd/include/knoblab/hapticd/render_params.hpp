@@ -1,0 +1,27 @@
+// What the renderer renders: the rendering model of thesis Eq. 14 with the
+// optional Karnopp stick band (Eq. 7), the virtual-mass coupling of §3.3 and
+// prototyper tiles by id. SI units.
+#pragma once
+
+namespace knoblab::hapticd {
+
+struct RenderParams {
+  double M_acc = 0.0;   // kg·m², rendered inertia (virtual mass)
+  double B_vel = 0.0;   // N·m·s/rad, damping
+  double A_pos = 0.0;   // N·m, detent amplitude
+  double P_pos = 1.0;   // rad per radian of phase: detents per revolution = 1/P
+  // Karnopp stick band; needs the torque sensor to know what the hand applies.
+  bool stick = false;
+  double dv = 0.0, D_neg = 0.0, D_pos = 0.0;
+  // Virtual-mass coupling (§3.3). The thesis prints K_vm = 12 000 and
+  // B_vm = 88 "Nm/rad"; only mN·m units make a stable, felt-but-stiff
+  // coupling with its masses, so 12 N·m/rad and 0.088 N·m·s/rad.
+  double K_vm = 12.0;
+  double B_vm = 0.088;
+};
+
+// A time for slider moves to settle: a new value is reached by a linear ramp
+// over this time, so a drag never makes a torque step (bumpless).
+inline constexpr double kParamRampSeconds = 0.05;
+
+}  // namespace knoblab::hapticd

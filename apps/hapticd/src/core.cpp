@@ -1,0 +1,132 @@
+#include "knoblab/hapticd/core.hpp"
+
+namespace knoblab::hapticd {
+
+const char* to_string(Mode m) {
+  switch (m) {
+    case Mode::Idle: return "idle";
+    case Mode::Render: return "render";
+    case Mode::Capture: return "capture";
+  }
+  return "?";
+}
+
+namespace {
+RenderConfig render_config(const CoreConfig& c) {
+  RenderConfig r = c.render;
+  r.rate_hz = c.rate_hz;
+  r.calibration = c.calibration;
+  r.torque_per_volt = c.limits.torque_per_volt;
+  return r;
+}
+}  // namespace
+
+HapticCore::HapticCore(const CoreConfig& cfg)
+    : cfg_(cfg), render_(render_config(cfg)), supervisor_(cfg.limits) {}
+
+CoreState HapticCore::state() const {
+  const std::uint64_t p = published_.load(std::memory_order_acquire);
+  CoreState s;
+  s.mode = static_cast<Mode>(p & 0xff);
+  s.faults = static_cast<std::uint32_t>((p >> 8) & 0xffffff);
+  s.recording_id = static_cast<std::uint32_t>(p >> 32);
+  s.cycles = published_cycles_.load(std::memory_order_relaxed);
+  return s;
+}
+
+void HapticCore::apply(const CoreCommand& c) {
+  switch (c.kind) {
+    case CoreCommand::SetMode:
+      if (c.mode == Mode::Render && mode_ != Mode::Render) render_.reset();
+      if (c.mode != Mode::Capture) mode_ = c.mode;  // capture starts only with StartCapture
+      break;
+    case CoreCommand::SetRender:
+      render_.set_params(c.render, c.immediate);
+      break;
+    case CoreCommand::StartCapture:
+      capture_ = c.capture;
+      capture_left_ = c.capture_cycles;
+      mode_ = Mode::Capture;
+      recording_ = next_recording_++;
+      break;
+    case CoreCommand::StopCapture:
+      if (mode_ == Mode::Capture) {
+        mode_ = Mode::Idle;
+        recording_ = 0;
+      }
+      break;
+    case CoreCommand::StartRecording:
+      if (recording_ == 0) recording_ = next_recording_++;
+      break;
+    case CoreCommand::StopRecording:
+      if (mode_ != Mode::Capture) recording_ = 0;
+      break;
+    case CoreCommand::ClearFault:
+      clear_requested_ = true;
+      forced_ = 0;
+      break;
+    case CoreCommand::ForceSafe:
+      forced_ = kFaultCommanded;
+      break;
+  }
+}
+
+void HapticCore::measure_idle(const capture::DaqInputs& in, capture::Sample& s) {
+  const capture::SensorCalibration& cal = cfg_.calibration;
+  s.t = static_cast<double>(cycles_) / cfg_.rate_hz;
+  s.theta = cal.theta(in.encoder_counts);
+  s.alpha = cal.alpha(in.accel_V, s.theta);
+  s.torque = cal.torque(in.torque_V);
+}
+
+void HapticCore::cycle(const capture::DaqInputs& in, const LineInputs& lines,
+                       std::int64_t consecutive_overruns, capture::DaqOutputs& out, LoopRecord& rec) {
+  CoreCommand c;
+  for (int i = 0; i < 4 && commands_.try_pop(c); ++i) apply(c);
+
+  capture::Sample& s = rec.sample;
+  s = {};
+  out = {};
+  bool capture_done = false;
+  switch (mode_) {
+    case Mode::Idle:
+      measure_idle(in, s);
+      break;
+    case Mode::Render:
+      render_.update(in, out, s);
+      break;
+    case Mode::Capture:
+      capture_.update(in, out, s);
+      capture_done = --capture_left_ <= 0;
+      break;
+  }
+
+  SafetyInputs safety;
+  safety.estop = lines.estop;
+  safety.external_faults = external_.load(std::memory_order_relaxed) | forced_;
+  safety.omega = s.omega;
+  safety.consecutive_overruns = static_cast<int>(consecutive_overruns);
+  safety.clear_requested = clear_requested_;
+  clear_requested_ = false;
+  const bool limited = supervisor_.apply(safety, out);
+  s.command = out.motor_command_V;
+
+  s.flags = (out.amp_enable ? interchange::kAmpEnabled : 0u) | (lines.estop ? interchange::kEstopActive : 0u) |
+            (supervisor_.safe_state() ? interchange::kFaultLatched : 0u) |
+            (limited ? interchange::kTorqueLimited : 0u);
+  rec.recording_id = recording_;
+  rec.mode = mode_;
+  if (capture_done) {  // that was the capture's last sample
+    mode_ = Mode::Idle;
+    recording_ = 0;
+  }
+  ++cycles_;
+
+  const std::uint64_t packed = static_cast<std::uint64_t>(mode_) |
+                               (static_cast<std::uint64_t>(supervisor_.latched() & 0xffffff) << 8) |
+                               (static_cast<std::uint64_t>(recording_) << 32);
+  published_.store(packed, std::memory_order_release);
+  published_cycles_.store(cycles_, std::memory_order_relaxed);
+}
+
+}  // namespace knoblab::hapticd

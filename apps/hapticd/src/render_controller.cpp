@@ -1,0 +1,74 @@
+#include "knoblab/hapticd/render_controller.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "knoblab/model/models.hpp"
+
+namespace knoblab::hapticd {
+
+namespace {
+double frequency_of(const RenderParams& p) { return p.P_pos > 0.0 ? 1.0 / p.P_pos : 0.0; }
+}  // namespace
+
+RenderController::RenderController(const RenderConfig& cfg)
+    : cfg_(cfg),
+      dt_(1.0 / cfg.rate_hz),
+      ramp_cycles_(static_cast<int>(std::lround(kParamRampSeconds * cfg.rate_hz))),
+      velocity_filter_(model::design_butterworth_lowpass(
+          cfg.velocity_filter_order, std::min(cfg.velocity_cutoff_hz, 0.2 * cfg.rate_hz), cfg.rate_hz)) {}
+
+void RenderController::set_params(const RenderParams& p, bool immediately) {
+  target_ = p;
+  const int n = immediately ? 0 : ramp_cycles_;
+  M_.retarget(p.M_acc, n);
+  B_.retarget(p.B_vel, n);
+  A_.retarget(p.A_pos, n);
+  f_.retarget(frequency_of(p), n);
+}
+
+void RenderController::reset() {
+  velocity_filter_.reset();
+  acc_box_.reset();
+  have_prev_ = false;
+  cycle_ = 0;
+}
+
+void RenderController::update(const capture::DaqInputs& in, capture::DaqOutputs& out,
+                              capture::Sample& s) {
+  const capture::SensorCalibration& cal = cfg_.calibration;
+  s.t = static_cast<double>(cycle_++) * dt_;
+  s.theta = cal.theta(in.encoder_counts);
+  const double raw_omega = have_prev_ ? (s.theta - prev_theta_) / dt_ : 0.0;
+  if (!have_prev_) vm_.reset(s.theta, 0.0);
+  have_prev_ = true;
+  prev_theta_ = s.theta;
+  s.omega = velocity_filter_.process(raw_omega);
+  s.torque = cal.torque(in.torque_V);
+
+  const double M = M_.step(), B = B_.step(), A = A_.step(), f = f_.step();
+
+  // Inertia: virtual-mass coupling, box-filtered; its mass acceleration is
+  // what the knob "has", so it is also the recorded α in render mode.
+  const double tau_acc = acc_box_.process(vm_.update(M, target_.K_vm, target_.B_vm, s.theta, s.omega, dt_));
+  s.alpha = M > 0.0 ? tau_acc / M : 0.0;
+
+  // Damping, detents and the stick band: the model core's terms.
+  model::RenderModel<double> m;
+  m.B_vel = B;
+  m.detents.A = A;
+  m.detents.P = f > 0.0 ? 1.0 / f : 1.0;
+  if (!(f > 0.0)) m.detents.A = 0.0;
+  m.stick_enabled = target_.stick;
+  m.stick = {target_.dv, target_.D_neg, target_.D_pos};
+  const model::Kinematics<double> k{s.theta, s.omega, 0.0};  // M = 0: inertia is the virtual mass
+  const double tau = m.torque(k, s.torque - tau_acc) + tau_acc;
+  last_model_torque_ = tau;
+
+  // The knob resists with τ, so the motor pushes with −τ.
+  s.command = -tau / cfg_.torque_per_volt;
+  out.motor_command_V = s.command;
+  out.amp_enable = true;
+}
+
+}  // namespace knoblab::hapticd

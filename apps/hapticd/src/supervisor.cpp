@@ -1,0 +1,30 @@
+#include "knoblab/hapticd/supervisor.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace knoblab::hapticd {
+
+bool Supervisor::apply(const SafetyInputs& in, capture::DaqOutputs& out) {
+  std::uint32_t now = in.external_faults;
+  if (in.estop) now |= kFaultEstop;
+  if (std::abs(in.omega) > limits_.velocity_limit_rad_s) now |= kFaultVelocity;
+  if (in.consecutive_overruns > limits_.max_consecutive_overruns) now |= kFaultOverruns;
+
+  // A clear succeeds only for causes that are gone; live causes stay latched.
+  if (in.clear_requested) latched_ = 0;
+  latched_ |= now;
+
+  if (latched_ != 0) {
+    out.motor_command_V = 0.0;
+    out.amp_enable = false;
+    return false;
+  }
+  const double limit_V = limits_.torque_limit_Nm / limits_.torque_per_volt;
+  const double clipped = std::clamp(out.motor_command_V, -limit_V, limit_V);
+  const bool limited = clipped != out.motor_command_V;
+  out.motor_command_V = clipped;
+  return limited;
+}
+
+}  // namespace knoblab::hapticd

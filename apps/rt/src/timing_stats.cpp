@@ -1,0 +1,58 @@
+// Quantiles and summaries, computed outside the loop from a snapshot.
+#include <cmath>
+
+#include "knoblab/rt/histogram.hpp"
+#include "knoblab/rt/timing_stats.hpp"
+
+namespace knoblab::rt {
+
+std::int64_t quantile_ns(std::span<const std::uint64_t> bins, std::int64_t bin_ns,
+                         std::int64_t min_ns, std::int64_t max_ns, double q) noexcept {
+  std::uint64_t total = 0;
+  for (std::uint64_t c : bins) total += c;
+  if (total == 0 || bins.empty()) return 0;
+  if (!(q > 0.0)) return min_ns;  // also catches NaN
+  if (q >= 1.0) return max_ns;
+  // The sample of rank ceil(q·n) (1-based) decides the quantile.
+  auto rank = static_cast<std::uint64_t>(std::ceil(q * static_cast<double>(total)));
+  if (rank == 0) rank = 1;
+  std::uint64_t seen = 0;
+  const std::size_t overflow_bin = bins.size() - 1;
+  for (std::size_t b = 0; b < bins.size(); ++b) {
+    seen += bins[b];
+    if (seen < rank) continue;
+    if (b == overflow_bin) return max_ns;
+    const std::int64_t upper_edge = (static_cast<std::int64_t>(b) + 1) * bin_ns;
+    return upper_edge < max_ns ? upper_edge : max_ns;
+  }
+  return max_ns;
+}
+
+HistogramSummary summarize(std::span<const std::uint64_t> bins, std::int64_t bin_ns,
+                           std::uint64_t count, std::int64_t sum_ns, std::int64_t min_ns,
+                           std::int64_t max_ns) noexcept {
+  HistogramSummary s;
+  if (count == 0) return s;
+  s.count = count;
+  s.min_ns = min_ns;
+  s.max_ns = max_ns;
+  s.mean_ns = static_cast<double>(sum_ns) / static_cast<double>(count);
+  s.median_ns = quantile_ns(bins, bin_ns, min_ns, max_ns, 0.5);
+  s.p99_ns = quantile_ns(bins, bin_ns, min_ns, max_ns, 0.99);
+  s.p999_ns = quantile_ns(bins, bin_ns, min_ns, max_ns, 0.999);
+  s.overflow = bins.empty() ? 0 : bins.back();
+  return s;
+}
+
+TimingSummary summarize(const TimingStats& stats) noexcept {
+  TimingSummary s;
+  s.period_ns = stats.period_ns;
+  s.cycles = stats.cycles;
+  s.overruns = stats.overruns;
+  s.max_consecutive_overruns = stats.max_consecutive_overruns;
+  s.wakeup = summarize(stats.wakeup);
+  s.compute = summarize(stats.compute);
+  return s;
+}
+
+}  // namespace knoblab::rt

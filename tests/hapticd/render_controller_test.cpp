@@ -1,0 +1,102 @@
+// The renderer against a hand that moves the knob along a known path: the
+// motor command must be minus the model torque of that motion.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+
+#include "knoblab/hapticd/render_controller.hpp"
+
+namespace knoblab::hapticd {
+namespace {
+
+constexpr double kRate = 10000.0, kDt = 1.0 / kRate;
+
+struct Bench {
+  RenderConfig cfg;
+  RenderController rc{cfg};
+  capture::SensorCalibration cal;
+
+  // Drives the hand path θ(t) for n cycles; returns the last command.
+  double run(const std::function<double(double)>& theta, int n, int start = 0,
+             double measured_torque = 0.0, std::vector<double>* commands = nullptr) {
+    capture::DaqOutputs out;
+    capture::Sample s;
+    for (int i = start; i < start + n; ++i) {
+      capture::DaqInputs in;
+      in.encoder_counts = static_cast<std::int64_t>(std::floor(theta(i * kDt) / (2 * M_PI / cal.counts_per_rev)));
+      in.torque_V = measured_torque / cal.torque_Nm_per_V;
+      rc.update(in, out, s);
+      if (commands) commands->push_back(out.motor_command_V);
+    }
+    return out.motor_command_V;
+  }
+  double torque_of(double volts) const { return -volts * cfg.torque_per_volt; }
+};
+
+TEST(RenderController, DampingOpposesMotion) {
+  Bench b;
+  RenderParams p;
+  p.B_vel = 0.01;
+  b.rc.set_params(p, true);
+  const double v = b.run([](double t) { return 2.0 * t; }, 3000);
+  EXPECT_NEAR(b.torque_of(v), 0.01 * 2.0, 0.0005);
+  EXPECT_LT(v, 0.0);  // the motor pushes against the motion
+}
+
+TEST(RenderController, DetentsFollowAmplitudeAndPeriod) {
+  Bench b;
+  RenderParams p;
+  p.A_pos = 0.02;
+  p.P_pos = 1.0 / 12.0;
+  b.rc.set_params(p, true);
+  auto path = [](double t) { return 0.3 * t; };
+  for (int n : {1000, 1377, 2500}) {
+    const double v = b.run(path, 1, n);
+    const double theta = std::floor(path(n * kDt) / (2 * M_PI / 640000.0)) * (2 * M_PI / 640000.0);
+    EXPECT_NEAR(b.torque_of(v), 0.02 * std::sin(theta * 12.0), 1e-4) << n;
+  }
+}
+
+TEST(RenderController, VirtualMassRendersInertia) {
+  Bench b;
+  RenderParams p;
+  p.M_acc = 0.2e-3;
+  b.rc.set_params(p, true);
+  const double v = b.run([](double t) { return 10.0 * t * t; }, 5000);  // α = 20 rad/s²
+  EXPECT_NEAR(b.torque_of(v), 0.2e-3 * 20.0, 0.05 * 0.2e-3 * 20.0);
+}
+
+TEST(RenderController, ParameterChangesRampWithoutASteps) {
+  Bench b;
+  std::vector<double> cmds;
+  auto still = [](double) { return 0.131; };  // a detent flank: full torque change if A jumped
+  b.run(still, 100, 0, 0.0, &cmds);
+  RenderParams p;
+  p.A_pos = 0.05;
+  p.P_pos = 1.0 / 12.0;
+  b.rc.set_params(p);  // ramped
+  b.run(still, 1000, 100, 0.0, &cmds);
+  double biggest_step = 0;
+  for (std::size_t i = 1; i < cmds.size(); ++i) biggest_step = std::max(biggest_step, std::abs(cmds[i] - cmds[i - 1]));
+  const double full = std::abs(b.torque_of(cmds.back()));
+  EXPECT_NEAR(full, 0.05 * std::abs(std::sin(0.131 * 12.0)), 1e-4);  // reached after the ramp
+  EXPECT_LT(b.torque_of(biggest_step) * -1.0, full / 100.0);       // ≈ 500 small steps, no jump
+}
+
+TEST(RenderController, StickBandHoldsUpToTheStaticLimit) {
+  Bench b;
+  RenderParams p;
+  p.stick = true;
+  p.dv = 0.01;
+  p.D_neg = 0.02;
+  p.D_pos = 0.03;
+  b.rc.set_params(p, true);
+  auto still = [](double) { return 0.0; };
+  EXPECT_NEAR(b.torque_of(b.run(still, 200, 0, 0.015)), 0.015, 1e-4);   // held
+  EXPECT_NEAR(b.torque_of(b.run(still, 200, 200, 0.5)), 0.03, 1e-4);    // breaks away
+  EXPECT_NEAR(b.torque_of(b.run(still, 200, 400, -0.5)), -0.02, 1e-4);
+}
+
+}  // namespace
+}  // namespace knoblab::hapticd
