@@ -99,7 +99,7 @@ SimulationResult simulate(const SimulationRequest& r, store::Store* db) {
     capture::DaqOutputs out;
     hapticd::LoopRecord rec;
     daq.read(in);
-    core.cycle(in, {}, 0, out, rec);
+    core.cycle(in, {}, 0, 0, out, rec);
     daq.write(out);
     if (rec.recording_id == 0) continue;
     const capture::Sample& s = rec.sample;

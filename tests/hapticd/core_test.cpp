@@ -40,7 +40,7 @@ TEST(Core, CaptureRecordsExactlyItsCyclesThenGoesIdle) {
     capture::DaqOutputs out;
     LoopRecord rec;
     daq.read(in);
-    core.cycle(in, {}, 0, out, rec);
+    core.cycle(in, {}, 0, 0, out, rec);
     daq.write(out);
     if (rec.recording_id == 1) {
       ASSERT_EQ(rec.sample.t, static_cast<double>(recorded) * (1.0 / 10000.0));
@@ -79,7 +79,7 @@ TEST(Core, EstopMidRenderIsSafeInTheSameCycle) {
     LoopRecord rec;
     LineInputs lines;
     lines.estop = i >= 1000;
-    core.cycle(in, lines, 0, out, rec);
+    core.cycle(in, lines, 0, 0, out, rec);
     if (i < 1000) {
       driving += out.amp_enable && out.motor_command_V != 0.0;
     } else {
@@ -102,18 +102,22 @@ TEST(Core, ExternalFaultsAndForcedSafeLatchUntilCleared) {
   c.kind = CoreCommand::SetMode;
   c.mode = Mode::Render;
   core.post(c);
+  std::uint32_t external = 0;
   auto step = [&] {
     capture::DaqInputs in;
     capture::DaqOutputs out;
     LoopRecord rec;
-    core.cycle(in, {}, 0, out, rec);
+    core.cycle(in, {}, 0, external, out, rec);
     return out;
   };
   EXPECT_TRUE(step().amp_enable);
-  core.raise(kFaultAmplifier);
+  external = kFaultAmplifier;
   EXPECT_FALSE(step().amp_enable);
-  core.clear_external(kFaultAmplifier);
-  EXPECT_FALSE(step().amp_enable);  // latched
+  c.kind = CoreCommand::ClearFault;
+  core.post(c);
+  EXPECT_FALSE(step().amp_enable);  // the amplifier still reports it
+  external = 0;
+  EXPECT_FALSE(step().amp_enable);  // gone, but latched until cleared
   c.kind = CoreCommand::ClearFault;
   core.post(c);
   EXPECT_TRUE(step().amp_enable);
@@ -122,6 +126,13 @@ TEST(Core, ExternalFaultsAndForcedSafeLatchUntilCleared) {
   EXPECT_FALSE(step().amp_enable);
   EXPECT_EQ(core.state().faults, kFaultCommanded);
   EXPECT_EQ(core.state().mode, Mode::Render);
+  c.kind = CoreCommand::ClearFault;
+  core.post(c);
+  c.kind = CoreCommand::ForceSafe;
+  c.faults = kFaultWatchdog;
+  core.post(c);
+  EXPECT_FALSE(step().amp_enable);
+  EXPECT_EQ(core.state().faults, kFaultWatchdog);
 }
 
 }  // namespace

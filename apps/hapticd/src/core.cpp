@@ -66,7 +66,7 @@ void HapticCore::apply(const CoreCommand& c) {
       forced_ = 0;
       break;
     case CoreCommand::ForceSafe:
-      forced_ = kFaultCommanded;
+      forced_ |= c.faults;
       break;
   }
 }
@@ -80,12 +80,14 @@ void HapticCore::measure_idle(const capture::DaqInputs& in, capture::Sample& s) 
 }
 
 void HapticCore::cycle(const capture::DaqInputs& in, const LineInputs& lines,
-                       std::int64_t consecutive_overruns, capture::DaqOutputs& out, LoopRecord& rec) {
+                       std::int64_t consecutive_overruns, std::uint32_t external_faults,
+                       capture::DaqOutputs& out, LoopRecord& rec) {
   CoreCommand c;
   for (int i = 0; i < 4 && commands_.try_pop(c); ++i) apply(c);
 
   capture::Sample& s = rec.sample;
   s = {};
+  rec.now_ns = 0;
   out = {};
   bool capture_done = false;
   switch (mode_) {
@@ -103,7 +105,7 @@ void HapticCore::cycle(const capture::DaqInputs& in, const LineInputs& lines,
 
   SafetyInputs safety;
   safety.estop = lines.estop;
-  safety.external_faults = external_.load(std::memory_order_relaxed) | forced_;
+  safety.external_faults = external_faults | forced_;
   safety.omega = s.omega;
   safety.consecutive_overruns = static_cast<int>(consecutive_overruns);
   safety.clear_requested = clear_requested_;

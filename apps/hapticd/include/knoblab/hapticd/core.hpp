@@ -40,11 +40,13 @@ struct CoreCommand {
   RenderParams render{};
   capture::CaptureController capture{};
   std::int64_t capture_cycles = 0;
+  std::uint32_t faults = kFaultCommanded;  // ForceSafe: why (e.g. kFaultWatchdog)
 };
 
 // One loop cycle's record: the sample and whether it belongs to a recording.
 struct LoopRecord {
   capture::Sample sample;
+  std::int64_t now_ns = 0;         // CLOCK_MONOTONIC at the cycle's start (0 in simulated time)
   std::uint32_t recording_id = 0;  // 0: not recording; else which recording
   Mode mode = Mode::Idle;
 };
@@ -70,13 +72,11 @@ class HapticCore {
   // Non-realtime side. False when the queue is full (retry later).
   bool post(const CoreCommand& c) { return commands_.try_push(c); }
   CoreState state() const;
-  // Faults raised by other threads (Modbus poller, watchdog): OR'ed in.
-  void raise(std::uint32_t fault_bits) { external_.fetch_or(fault_bits, std::memory_order_relaxed); }
-  void clear_external(std::uint32_t fault_bits) { external_.fetch_and(~fault_bits, std::memory_order_relaxed); }
 
-  // Realtime side: one cycle.
+  // Realtime side: one cycle. `external_faults`: Fault bits that hold right
+  // now according to other parts (e.g. the amplifier's Modbus status).
   void cycle(const capture::DaqInputs& in, const LineInputs& lines, std::int64_t consecutive_overruns,
-             capture::DaqOutputs& out, LoopRecord& record);
+             std::uint32_t external_faults, capture::DaqOutputs& out, LoopRecord& record);
 
   const CoreConfig& config() const { return cfg_; }
 
@@ -95,7 +95,6 @@ class HapticCore {
   std::uint32_t forced_ = 0;
   std::uint32_t recording_ = 0, next_recording_ = 1;
   std::int64_t cycles_ = 0;
-  std::atomic<std::uint32_t> external_{0};
   std::atomic<std::uint64_t> published_{0};  // mode | faults | recording, see state()
   std::atomic<std::int64_t> published_cycles_{0};
 };

@@ -1,0 +1,181 @@
+// THE table of protocol v1: every command's arguments. Ranges are the
+// protocol's sanity bounds (a typo like 1e3 for 1e-3 never reaches the
+// motor); the daemon may refuse narrower cases with its own bad_args.
+#include <array>
+
+#include "knoblab/control/schema.hpp"
+
+namespace knoblab::control {
+
+namespace {
+
+constexpr bool kRequired = true;
+constexpr bool kOptional = false;
+
+constexpr ArgSpec number(std::string_view key, bool required, double lo, double hi,
+                         std::string_view unit, std::string_view doc) {
+  return {key, ArgType::number, required, {lo, hi}, {}, {}, nullptr, unit, doc};
+}
+constexpr ArgSpec integer(std::string_view key, bool required, double lo, double hi,
+                          std::string_view unit, std::string_view doc) {
+  return {key, ArgType::integer, required, {lo, hi}, {}, {}, nullptr, unit, doc};
+}
+constexpr ArgSpec text(std::string_view key, bool required, double max_len, std::string_view doc) {
+  return {key, ArgType::string, required, {}, {1, max_len}, {}, nullptr, {}, doc};
+}
+constexpr ArgSpec label(std::string_view key, bool required, std::string_view doc) {
+  return {key, ArgType::label, required, {}, {1, 128}, {}, nullptr, {}, doc};
+}
+constexpr ArgSpec boolean(std::string_view key, bool required, std::string_view doc) {
+  return {key, ArgType::boolean, required, {}, {}, {}, nullptr, {}, doc};
+}
+constexpr ArgSpec choice(std::string_view key, bool required, std::span<const std::string_view> choices,
+                         std::string_view doc) {
+  return {key, ArgType::choice, required, {}, {}, choices, nullptr, {}, doc};
+}
+constexpr ArgSpec integer_list(std::string_view key, bool required, Range count, Range each,
+                               std::string_view doc) {
+  return {key, ArgType::integer_list, required, each, count, {}, nullptr, {}, doc};
+}
+constexpr ArgSpec choice_list(std::string_view key, bool required, Range count,
+                              std::span<const std::string_view> choices, std::string_view doc) {
+  return {key, ArgType::choice_list, required, {}, count, choices, nullptr, {}, doc};
+}
+constexpr ArgSpec object(std::string_view key, bool required, const ObjectSchema* schema,
+                         std::string_view doc) {
+  return {key, ArgType::object, required, {}, {}, {}, schema, {}, doc};
+}
+
+template <std::size_t N>
+constexpr std::array<ArgSpec, N> all_optional(std::array<ArgSpec, N> args) {
+  for (auto& a : args) a.required = false;
+  return args;
+}
+
+// hello
+constexpr std::array kHelloArgs = {
+    integer_list("versions", kRequired, {1, 16}, {1, 1000}, "protocol versions the client speaks"),
+    text("client", kOptional, 64, "client name for logs, e.g. \"knoblab-ui\""),
+    integer("watchdog_ms", kOptional, 10, 60000, "ms",
+            "become the supervising client: silence this long (or disconnecting) puts "
+            "the motor in its safe state"),
+};
+
+// load_model / set_params: the render model (Eq. 14) plus options.
+constexpr std::array kModelArgs = {
+    number("M_acc", kRequired, 0, 0.01, "kg·m²", "inertia, τ = M_acc·θ̈"),
+    number("B_vel", kRequired, 0, 1, "N·m·s/rad", "viscous damping, τ = B_vel·θ̇"),
+    number("A_pos", kRequired, -0.5, 0.5, "N·m", "detent amplitude, τ = A_pos·sin(θ/P_pos)"),
+    number("P_pos", kRequired, 0.001, 100, "rad", "detent period: 1/P_pos detents per revolution"),
+    number("dv", kOptional, 0, 10, "rad/s", "stick band half-width (Karnopp, Eq. 7)"),
+    number("D_neg", kOptional, 0, 0.5, "N·m", "static friction limit, negative torque"),
+    number("D_pos", kOptional, 0, 0.5, "N·m", "static friction limit, positive torque"),
+    number("K_vm", kOptional, 0, 100, "N·m/rad", "virtual-mass coupling stiffness"),
+    number("B_vm", kOptional, 0, 1, "N·m·s/rad", "virtual-mass coupling damping"),
+};
+constexpr auto kParamArgs = all_optional(kModelArgs);
+constexpr std::array<std::string_view, 3> kStickKeys = {"dv", "D_neg", "D_pos"};
+constexpr std::array<std::string_view, 2> kVirtualMassKeys = {"K_vm", "B_vm"};
+constexpr std::array<std::string_view, 9> kParamKeys = {
+    "M_acc", "B_vel", "A_pos", "P_pos", "dv", "D_neg", "D_pos", "K_vm", "B_vm"};
+constexpr std::array kModelGroups = {
+    GroupRule{GroupRule::Kind::all_or_none, kStickKeys},
+    GroupRule{GroupRule::Kind::all_or_none, kVirtualMassKeys},
+};
+constexpr std::array kParamGroups = {GroupRule{GroupRule::Kind::at_least_one, kParamKeys}};
+
+// start_capture
+constexpr std::array kSweptSineArgs = {
+    number("a", kRequired, 0, 1000, "", "Eq. 8 sweep start (u at t = 0)"),
+    number("b", kRequired, 0, 1000, "", "Eq. 8 sweep end (u at t = d)"),
+    number("c", kRequired, 0, 6.3, "rad", "position amplitude"),
+    number("d", kRequired, 0.01, 3600, "s", "sweep duration"),
+};
+constexpr std::array kTorqueSweepArgs = {
+    number("a", kRequired, 0, 1000, "", "Eq. 8 sweep start (u at t = 0)"),
+    number("b", kRequired, 0, 1000, "", "Eq. 8 sweep end (u at t = d)"),
+    number("c", kRequired, 0, 0.5, "N·m", "torque amplitude"),
+    number("d", kRequired, 0.01, 3600, "s", "sweep duration"),
+};
+constexpr std::array kPidArgs = {
+    number("Kp", kOptional, 0, 1e5, "V/rad", "proportional gain (default 200)"),
+    number("Ki", kOptional, 0, 1e7, "V/(rad·s)", "integral gain (default 5000)"),
+    number("Kd", kOptional, 0, 100, "V·s/rad", "derivative gain (default 1)"),
+};
+constexpr ObjectSchema kSweptSine{kSweptSineArgs, {}};
+constexpr ObjectSchema kTorqueSweep{kTorqueSweepArgs, {}};
+constexpr ObjectSchema kPid{kPidArgs, {}};
+constexpr std::array kCaptureArgs = {
+    object("swept_sine", kOptional, &kSweptSine, "position stimulus θ = c·sin φ(t), Eq. 8"),
+    object("torque_sweep", kOptional, &kTorqueSweep, "torque stimulus τ = c·sin φ(t)"),
+    object("pid", kOptional, &kPid, "position controller gains (Eq. 4)"),
+    number("seconds", kRequired, 0.01, 3600, "s", "capture length"),
+    text("knob", kRequired, 64, "knob name the capture is stored under"),
+};
+constexpr std::array<std::string_view, 2> kStimulusKeys = {"swept_sine", "torque_sweep"};
+constexpr std::array kCaptureGroups = {GroupRule{GroupRule::Kind::exactly_one, kStimulusKeys}};
+
+// start_trial
+constexpr std::array kTrialArgs = {
+    label("study", kRequired, "study id (opaque)"),
+    label("participant", kRequired, "participant id (opaque)"),
+    label("condition", kRequired, "condition id (opaque)"),
+};
+
+// calibrate, set_mode
+constexpr std::array<std::string_view, 4> kCalibrationKinds = {"spatial", "torque", "accel_gain",
+                                                               "gravity"};
+constexpr std::array kCalibrateArgs = {choice("kind", kRequired, kCalibrationKinds, "what to calibrate")};
+constexpr std::array<std::string_view, 4> kModes = {"idle", "render", "capture", "calibrate"};
+constexpr std::array kModeArgs = {choice("mode", kRequired, kModes, "daemon mode")};
+
+// subscribe
+constexpr std::array<std::string_view, kEventNames.size() + 1> kSubscribable = {
+    kEventNames[0], kEventNames[1], kEventNames[2], kEventNames[3],
+    kEventNames[4], kEventNames[5], kEventNames[6], "*"};
+static_assert(kEventNames.size() == 7, "list every event in kSubscribable");
+constexpr std::array kSubscribeArgs = {
+    choice_list("events", kRequired, {0, kSubscribable.size()}, kSubscribable,
+                "events to receive from now on (replaces the previous set; \"*\" = all)"),
+    boolean("telemetry", kOptional, "also return the telemetry shared-memory name"),
+};
+
+constexpr std::array kTable = {
+    CommandSpec{Command::hello, {kHelloArgs, {}}, "negotiate the version; optionally supervise",
+                R"({"versions":[1],"client":"knoblab-cli"})"},
+    CommandSpec{Command::ping, {}, "heartbeat (feeds the watchdog)", "{}"},
+    CommandSpec{Command::get_state, {}, "the daemon's current state", "{}"},
+    CommandSpec{Command::load_model, {kModelArgs, kModelGroups}, "replace the render model",
+                R"({"M_acc":1.3e-05,"B_vel":0.0002,"A_pos":0.01,"P_pos":0.05})"},
+    CommandSpec{Command::set_params, {kParamArgs, kParamGroups},
+                "change some render-model parameters (slider drags)", R"({"B_vel":0.0005})"},
+    CommandSpec{Command::start_capture, {kCaptureArgs, kCaptureGroups}, "start a capture",
+                R"({"swept_sine":{"a":0,"b":1.5,"c":1,"d":3},"seconds":6,"knob":"demo"})"},
+    CommandSpec{Command::stop_capture, {}, "stop the running capture", "{}"},
+    CommandSpec{Command::start_trial, {kTrialArgs, {}}, "start a study trial",
+                R"({"study":"S1","participant":7,"condition":"detents-12"})"},
+    CommandSpec{Command::stop_trial, {}, "stop the running trial", "{}"},
+    CommandSpec{Command::calibrate, {kCalibrateArgs, {}}, "run a calibration", R"({"kind":"spatial"})"},
+    CommandSpec{Command::clear_fault, {}, "clear a latched fault", "{}"},
+    CommandSpec{Command::set_mode, {kModeArgs, {}}, "switch the daemon's mode", R"({"mode":"render"})"},
+    CommandSpec{Command::subscribe, {kSubscribeArgs, {}}, "choose the events pushed to this client",
+                R"({"events":["state","fault_latched"],"telemetry":true})"},
+};
+static_assert(kTable.size() == kCommandCount);
+
+constexpr bool table_in_enum_order() {
+  for (std::size_t i = 0; i < kTable.size(); ++i)
+    if (static_cast<std::size_t>(kTable[i].command) != i) return false;
+  return true;
+}
+static_assert(table_in_enum_order(), "kTable rows must follow the Command enum");
+
+}  // namespace
+
+std::span<const CommandSpec> command_table() noexcept { return kTable; }
+
+const CommandSpec& command_spec(Command command) noexcept {
+  return kTable[static_cast<std::size_t>(command)];
+}
+
+}  // namespace knoblab::control

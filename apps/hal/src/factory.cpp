@@ -1,0 +1,95 @@
+#include "knoblab/hal/factory.hpp"
+
+#include <fstream>
+#include <sstream>
+
+#include "config_reader.hpp"
+#include "knoblab/capture/sim_daq.hpp"
+#include "knoblab/hal/comedi_daq.hpp"
+#include "knoblab/hal/gpiod_lines.hpp"
+#include "knoblab/hal/memory_lines.hpp"
+#include "knoblab/sim/presets.hpp"
+
+namespace knoblab::hal {
+
+namespace {
+
+using detail::ConfigReader;
+
+std::string backend_of(const nlohmann::json& config, const std::string& where) {
+  ConfigReader r(config, where);
+  return r.string("backend");
+}
+
+[[noreturn]] void unknown_backend(const std::string& where, const std::string& name, const char* choices) {
+  throw ConfigError(where + ".backend: unknown backend \"" + name + "\" (use " + choices + ")");
+}
+
+std::unique_ptr<capture::Daq> make_sim_daq(const nlohmann::json& config, const std::string& where) {
+  ConfigReader r(config, where);
+  r.has("backend");
+  const std::string knob = r.string("knob");
+  const sim::presets::Preset* preset = sim::presets::find(knob);
+  if (preset == nullptr) {
+    std::string ids;
+    for (const auto& p : sim::presets::list()) ids += (ids.empty() ? "" : ", ") + std::string(p.id);
+    r.fail("knob", "unknown knob preset \"" + knob + "\" (presets: " + ids + ")");
+  }
+  // Must equal the loop's rate: the plant steps 1/rate_hz per read().
+  const double rate_hz = r.number_or("rate_hz", 10000.0);
+  if (!(rate_hz >= 1.0 && rate_hz <= 100000.0)) r.fail("rate_hz", "must be in [1, 100000] Hz");
+  sim::PlantConfig plant;
+  plant.knob = preset->knob;
+  plant.seed = r.uint64_or("seed", plant.seed);
+  r.finish();
+  return std::make_unique<capture::SimDaq>(plant, rate_hz);
+}
+
+std::unique_ptr<DigitalLines> make_memory_lines(const nlohmann::json& config, const std::string& where) {
+  ConfigReader r(config, where);
+  r.has("backend");
+  const std::string estop = r.string_or("estop", "asserted");
+  if (estop != "asserted" && estop != "released")
+    r.fail("estop", "must be \"asserted\" or \"released\", got \"" + estop + "\"");
+  r.finish();
+  return std::make_unique<MemoryLines>(estop == "asserted");
+}
+
+}  // namespace
+
+std::unique_ptr<capture::Daq> make_daq(const nlohmann::json& config, std::string_view where_view, ComediApi& comedi) {
+  const std::string where(where_view);
+  const std::string backend = backend_of(config, where);
+  if (backend == "sim") return make_sim_daq(config, where);
+  if (backend == "comedi") return std::make_unique<ComediDaq>(parse_comedi_config(config, where), comedi);
+  unknown_backend(where, backend, "sim or comedi");
+}
+
+std::unique_ptr<DigitalLines> make_lines(const nlohmann::json& config, std::string_view where_view) {
+  const std::string where(where_view);
+  const std::string backend = backend_of(config, where);
+  if (backend == "memory") return make_memory_lines(config, where);
+  if (backend == "gpiod") return std::make_unique<GpiodLines>(parse_gpiod_config(config, where));
+  unknown_backend(where, backend, "gpiod or memory");
+}
+
+nlohmann::json parse_config_text(std::string_view text, std::string_view origin) {
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    // e.what() reads "[json.exception.parse_error.101] parse error at line 3, column 5: …"
+    std::string why = e.what();
+    if (const auto at = why.find("] "); at != std::string::npos) why.erase(0, at + 2);
+    throw ConfigError(std::string(origin) + ": invalid JSON: " + why);
+  }
+}
+
+nlohmann::json load_config_file(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError(path.string() + ": cannot read the configuration file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_config_text(text.str(), path.string());
+}
+
+}  // namespace knoblab::hal

@@ -1,0 +1,41 @@
+// The control protocol's commands (docs/protocol.md) mapped onto the daemon:
+// each becomes a CoreCommand for the loop, a note for the recorder, or an
+// answer from state the loop publishes. Runs on the server's thread.
+#pragma once
+
+#include <cstdint>
+#include <mutex>
+#include <vector>
+
+#include "knoblab/control/command_handler.hpp"
+#include "knoblab/control/server.hpp"
+#include "knoblab/hapticd/recorder.hpp"
+#include "knoblab/hapticd/render_params.hpp"
+
+namespace knoblab::hapticd {
+
+class Daemon;
+
+class ControlHandler final : public control::CommandHandler {
+ public:
+  explicit ControlHandler(Daemon& daemon) : daemon_(daemon) {}
+
+  control::Reply handle(const control::Request& request) override;
+  void on_watchdog_expired(control::WatchdogReason reason) override;
+
+  // From the writer thread: state changes and finished recordings as events.
+  void publish_events(control::Server& server, const std::vector<FinishedRecording>& finished);
+
+ private:
+  control::Reply render(const nlohmann::json& args, bool partial);
+  control::Reply start_capture(const nlohmann::json& args);
+  nlohmann::json state_json() const;
+
+  Daemon& daemon_;
+  std::mutex mutex_;         // handle() and publish_events() run on different threads
+  RenderParams params_{};    // the last model sent to the loop
+  std::uint32_t last_faults_ = 0;
+  int last_mode_ = -1;
+};
+
+}  // namespace knoblab::hapticd

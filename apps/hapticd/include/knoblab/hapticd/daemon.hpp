@@ -1,0 +1,91 @@
+// hapticd put together: the realtime loop (rt::PeriodicLoop running
+// HapticCore over a DAQ and digital lines) feeding a lock-free ring; a writer
+// thread draining it into the store and telemetry; the control server; the
+// Modbus poller. Data flows one way: HAL → loop → ring → store / telemetry.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "knoblab/capture/daq.hpp"
+#include "knoblab/hal/digital_lines.hpp"
+#include "knoblab/hapticd/core.hpp"
+#include "knoblab/hapticd/recorder.hpp"
+#include "knoblab/modbus/poller.hpp"
+#include "knoblab/rt/periodic_loop.hpp"
+#include "knoblab/store/store.hpp"
+
+namespace knoblab::control {
+class Server;
+class TelemetryWriter;
+}  // namespace knoblab::control
+
+namespace knoblab::hapticd {
+
+struct DaemonConfig {
+  rt::LoopConfig loop{};
+  CoreConfig core{};
+  std::filesystem::path db;           // store; empty = record nothing
+  std::string socket_path;            // control socket; empty = no server
+  std::string socket_group;
+  std::string telemetry_shm;          // e.g. "/knoblab-telemetry"; empty = none
+  std::size_t telemetry_decimation = 10;
+  std::optional<modbus::PollerConfig> modbus;  // amplifier + biometrics; none = not wired
+  std::string knob;                   // default knob name for captures
+};
+
+class Daemon {
+ public:
+  // The DAQ and lines are the HAL backends (sim or real), owned here.
+  Daemon(DaemonConfig cfg, std::unique_ptr<capture::Daq> daq, std::unique_ptr<hal::DigitalLines> lines);
+  ~Daemon();
+  Daemon(const Daemon&) = delete;
+  Daemon& operator=(const Daemon&) = delete;
+
+  // Runs the loop on its realtime thread until stop() (or max_cycles);
+  // returns the loop's result once everything recorded is committed.
+  rt::LoopResult run();
+  void stop() { stop_.store(true); }
+
+  // --- non-realtime API (control handler, tests) ---
+  HapticCore& core() { return *core_; }
+  // Starts a swept-sine capture; returns false with a reason when it can't.
+  bool start_capture(const capture::CaptureConfig& cfg, double seconds, const std::string& knob,
+                     std::string& why);
+  bool post(const CoreCommand& c);
+  // Clears latched faults whose cause is gone: first the amplifier's own
+  // (over Modbus), then the supervisor's.
+  bool clear_faults();
+  std::vector<FinishedRecording> finished();
+  std::uint32_t modbus_status() const;
+  const DaemonConfig& config() const { return cfg_; }
+  const rt::StatsPublisher& stats() const { return *stats_; }
+  std::uint64_t ring_dropped() const;
+
+ private:
+  struct Impl;
+  void writer_main();
+  void publish_events(const std::vector<FinishedRecording>& finished);
+
+  DaemonConfig cfg_;
+  std::unique_ptr<capture::Daq> daq_;
+  std::unique_ptr<hal::DigitalLines> lines_;
+  std::unique_ptr<HapticCore> core_;
+  std::unique_ptr<Impl> impl_;
+  std::unique_ptr<rt::StatsPublisher> stats_;
+  std::optional<store::Store> store_;
+  std::unique_ptr<Recorder> recorder_;
+  std::unique_ptr<modbus::Poller> poller_;
+  std::atomic<bool> stop_{false}, loop_done_{false};
+  std::mutex finished_mutex_;
+  std::vector<FinishedRecording> finished_;
+  std::mutex command_mutex_;  // post() from several non-RT threads
+};
+
+}  // namespace knoblab::hapticd

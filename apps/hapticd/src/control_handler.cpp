@@ -1,0 +1,155 @@
+#include "knoblab/hapticd/control_handler.hpp"
+
+#include "knoblab/hapticd/daemon.hpp"
+#include "knoblab/modbus/status_bits.hpp"
+
+namespace knoblab::hapticd {
+
+namespace {
+
+using control::ErrorCode;
+using control::Reply;
+using nlohmann::json;
+
+json fault_names(std::uint32_t f) {
+  static const std::pair<std::uint32_t, const char*> names[] = {
+      {kFaultEstop, "estop"},       {kFaultAmplifier, "amplifier"}, {kFaultAmpComms, "amp_comms"},
+      {kFaultWatchdog, "watchdog"}, {kFaultOverruns, "overruns"},   {kFaultVelocity, "velocity"},
+      {kFaultCommanded, "commanded"}};
+  json out = json::array();
+  for (const auto& [bit, name] : names)
+    if (f & bit) out.push_back(name);
+  return out;
+}
+
+double get(const json& args, const char* key, double fallback) {
+  return args.contains(key) ? args.at(key).get<double>() : fallback;
+}
+
+}  // namespace
+
+json ControlHandler::state_json() const {
+  const CoreState s = daemon_.core().state();
+  json j;
+  j["mode"] = to_string(s.mode);
+  j["faults"] = fault_names(s.faults);
+  j["recording"] = s.recording_id != 0;
+  j["cycles"] = s.cycles;
+  j["rate_hz"] = daemon_.config().core.rate_hz;
+  j["modbus"] = modbus::status::describe(daemon_.modbus_status());
+  j["ring_dropped"] = daemon_.ring_dropped();
+  return j;
+}
+
+Reply ControlHandler::render(const json& a, bool partial) {
+  RenderParams p = partial ? params_ : RenderParams{};
+  p.M_acc = get(a, "M_acc", p.M_acc);
+  p.B_vel = get(a, "B_vel", p.B_vel);
+  p.A_pos = get(a, "A_pos", p.A_pos);
+  p.P_pos = get(a, "P_pos", p.P_pos);
+  if (a.contains("dv")) {
+    p.stick = true;
+    p.dv = get(a, "dv", p.dv);
+    p.D_neg = get(a, "D_neg", p.D_neg);
+    p.D_pos = get(a, "D_pos", p.D_pos);
+  } else if (!partial) {
+    p.stick = false;
+  }
+  p.K_vm = get(a, "K_vm", p.K_vm);
+  p.B_vm = get(a, "B_vm", p.B_vm);
+  CoreCommand c;
+  c.kind = CoreCommand::SetRender;
+  c.render = p;
+  if (!daemon_.post(c)) return Reply::failure(ErrorCode::busy, "the loop is not taking commands");
+  params_ = p;
+  return Reply::success({{"ramp_s", kParamRampSeconds}});
+}
+
+Reply ControlHandler::start_capture(const json& a) {
+  if (a.contains("torque_sweep"))
+    return Reply::failure(ErrorCode::bad_args, "torque-stimulus capture is not available in this build",
+                          "torque_sweep");
+  capture::CaptureConfig cc;
+  const json& s = a.at("swept_sine");
+  cc.stimulus = {s.at("a").get<double>(), s.at("b").get<double>(), s.at("c").get<double>(),
+                 s.at("d").get<double>()};
+  if (a.contains("pid")) {
+    const json& pid = a.at("pid");
+    cc.pid.Kp = get(pid, "Kp", cc.pid.Kp);
+    cc.pid.Ki = get(pid, "Ki", cc.pid.Ki);
+    cc.pid.Kd = get(pid, "Kd", cc.pid.Kd);
+  }
+  std::string why;
+  if (!daemon_.start_capture(cc, a.at("seconds").get<double>(), a.at("knob").get<std::string>(), why))
+    return Reply::failure(ErrorCode::busy, why);
+  return Reply::success({{"samples", static_cast<std::int64_t>(
+                                         std::llround(a.at("seconds").get<double>() * daemon_.config().core.rate_hz))}});
+}
+
+Reply ControlHandler::handle(const control::Request& r) {
+  std::lock_guard lock(mutex_);
+  using control::Command;
+  CoreCommand c;
+  switch (r.command) {
+    case Command::get_state:
+      return Reply::success(state_json());
+    case Command::load_model:
+      return render(r.args, false);
+    case Command::set_params:
+      return render(r.args, true);
+    case Command::start_capture:
+      return start_capture(r.args);
+    case Command::stop_capture:
+      c.kind = CoreCommand::StopCapture;
+      break;
+    case Command::start_trial:
+      c.kind = CoreCommand::StartRecording;
+      break;
+    case Command::stop_trial:
+      c.kind = CoreCommand::StopRecording;
+      break;
+    case Command::clear_fault:
+      if (!daemon_.clear_faults()) return Reply::failure(ErrorCode::busy, "the loop is not taking commands");
+      return Reply::success({{"faults", fault_names(daemon_.core().state().faults)}});
+    case Command::set_mode: {
+      const std::string mode = r.args.at("mode").get<std::string>();
+      if (mode == "capture") return Reply::failure(ErrorCode::bad_args, "captures start with start_capture", "mode");
+      if (mode == "calibrate")
+        return Reply::failure(ErrorCode::bad_args, "calibration mode is not available in this build", "mode");
+      c.kind = CoreCommand::SetMode;
+      c.mode = mode == "render" ? Mode::Render : Mode::Idle;
+      break;
+    }
+    case Command::calibrate:
+      return Reply::failure(ErrorCode::bad_args, "calibration mode is not available in this build", "kind");
+    default:
+      return Reply::failure(ErrorCode::internal, "command not handled by hapticd");
+  }
+  if (!daemon_.post(c)) return Reply::failure(ErrorCode::busy, "the loop is not taking commands");
+  return Reply::success();
+}
+
+void ControlHandler::on_watchdog_expired(control::WatchdogReason) {
+  CoreCommand c;
+  c.kind = CoreCommand::ForceSafe;
+  c.faults = kFaultWatchdog;
+  daemon_.post(c);
+}
+
+void ControlHandler::publish_events(control::Server& server, const std::vector<FinishedRecording>& finished) {
+  std::lock_guard lock(mutex_);
+  const CoreState s = daemon_.core().state();
+  if (s.faults != last_faults_) {
+    if (s.faults & ~last_faults_) server.publish({"fault_latched", {{"faults", fault_names(s.faults)}}});
+    last_faults_ = s.faults;
+    server.publish({"state", state_json()});
+  } else if (static_cast<int>(s.mode) != last_mode_) {
+    server.publish({"state", state_json()});
+  }
+  last_mode_ = static_cast<int>(s.mode);
+  for (const FinishedRecording& f : finished)
+    server.publish({"capture_finished",
+                    {{"capture_id", f.capture_id}, {"samples", f.samples}, {"complete", f.complete}}});
+}
+
+}  // namespace knoblab::hapticd

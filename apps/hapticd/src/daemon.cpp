@@ -1,0 +1,264 @@
+#include "knoblab/hapticd/daemon.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <cmath>
+#include <stdexcept>
+
+#include "knoblab/control/server.hpp"
+#include "knoblab/control/telemetry_writer.hpp"
+#include "knoblab/hapticd/control_handler.hpp"
+#include "knoblab/modbus/status_bits.hpp"
+#include "knoblab/rt/os.hpp"
+#include "knoblab/rt/spsc_ring.hpp"
+
+namespace knoblab::hapticd {
+
+// 2^16 records: 6.5 s of loop output at 10 kHz may wait for the writer.
+using RecordRing = rt::SpscRing<LoopRecord, 1u << 16>;
+
+struct Daemon::Impl {
+  std::unique_ptr<RecordRing> ring = std::make_unique<RecordRing>();
+  std::unique_ptr<control::TelemetryWriter> telemetry;
+  std::unique_ptr<ControlHandler> handler;
+  std::unique_ptr<control::Server> server;
+  std::thread writer;
+};
+
+namespace {
+
+// Amplifier status over Modbus → the supervisor's fault bits.
+std::uint32_t faults_from_modbus(std::uint32_t word) {
+  std::uint32_t f = 0;
+  if (word & modbus::status::kAmpFault) f |= kFaultAmplifier;
+  if (word & (modbus::status::kAmpCommsLost | modbus::status::kAmpDisabledUnexpectedly |
+              modbus::status::kDeviceMismatch))
+    f |= kFaultAmpComms;
+  return f;
+}
+
+}  // namespace
+
+Daemon::Daemon(DaemonConfig cfg, std::unique_ptr<capture::Daq> daq, std::unique_ptr<hal::DigitalLines> lines)
+    : cfg_(std::move(cfg)),
+      daq_(std::move(daq)),
+      lines_(std::move(lines)),
+      core_(std::make_unique<HapticCore>(cfg_.core)),
+      impl_(std::make_unique<Impl>()),
+      stats_(std::make_unique<rt::StatsPublisher>()) {
+  if (!daq_) throw std::invalid_argument("hapticd: no DAQ backend");
+  if (!lines_) throw std::invalid_argument("hapticd: no digital-lines backend");
+  cfg_.loop.rate_hz = cfg_.core.rate_hz;
+  rt::validate(cfg_.loop);
+  if (!cfg_.db.empty()) store_.emplace(store::Store::open(cfg_.db));
+  store::NewCapture defaults;
+  defaults.knob = cfg_.knob;
+  defaults.rate_hz = cfg_.core.rate_hz;
+  defaults.calibration = cfg_.core.calibration.to_json();
+  defaults.source = "hapticd";
+  recorder_ = std::make_unique<Recorder>(store_ ? &*store_ : nullptr, defaults);
+  if (!cfg_.telemetry_shm.empty()) {
+    control::TelemetryConfig t;
+    t.shm_name = cfg_.telemetry_shm;
+    t.decimation = static_cast<std::uint32_t>(cfg_.telemetry_decimation);
+    t.loop_rate_hz = cfg_.core.rate_hz;
+    impl_->telemetry = std::make_unique<control::TelemetryWriter>(t);
+  }
+  if (cfg_.modbus) {
+    modbus::PollerConfig pc = *cfg_.modbus;
+    pc.on_sample = [this](const modbus::BiometricSample& b) {
+      store::BiometricSample s;
+      s.seq = static_cast<std::int64_t>(b.counter);
+      // Steady clock = CLOCK_MONOTONIC, the loop's clock; the recorder rebases it.
+      s.t = std::chrono::duration<double>(b.received.time_since_epoch()).count();
+      s.emg_corrugator = b.emg_corrugator;
+      s.emg_depressor = b.emg_depressor;
+      s.skin_conductance = b.skin_conductance;
+      recorder_->add_biometrics(s);
+    };
+    poller_ = std::make_unique<modbus::Poller>(std::move(pc));
+  }
+  if (!cfg_.socket_path.empty()) {
+    impl_->handler = std::make_unique<ControlHandler>(*this);
+    control::ServerConfig sc;
+    sc.socket_path = cfg_.socket_path;
+    sc.socket_group = cfg_.socket_group;
+    sc.telemetry_shm = cfg_.telemetry_shm;
+    impl_->server = std::make_unique<control::Server>(sc, *impl_->handler);
+  }
+}
+
+Daemon::~Daemon() {
+  stop_.store(true);
+  if (impl_->server) impl_->server->stop();
+  if (poller_) poller_->stop();
+  if (impl_->writer.joinable()) impl_->writer.join();
+}
+
+bool Daemon::post(const CoreCommand& c) {
+  std::lock_guard lock(command_mutex_);
+  for (int i = 0; i < 100; ++i) {  // the loop drains 4 per cycle: a full queue clears fast
+    if (core_->post(c)) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return false;
+}
+
+bool Daemon::start_capture(const capture::CaptureConfig& cc, double seconds, const std::string& knob,
+                           std::string& why) {
+  const CoreState s = core_->state();
+  if (s.faults != 0) {
+    why = "a fault is latched; clear it first";
+    return false;
+  }
+  if (s.mode == Mode::Capture || s.recording_id != 0) {
+    why = "a capture or recording is already running";
+    return false;
+  }
+  store::NewCapture info;
+  info.knob = knob.empty() ? cfg_.knob : knob;
+  info.rate_hz = cfg_.core.rate_hz;
+  info.calibration = cc.calibration.to_json();
+  info.source = "hapticd";
+  recorder_->describe_next(info);
+  CoreCommand c;
+  c.kind = CoreCommand::StartCapture;
+  capture::CaptureConfig full = cc;
+  full.rate_hz = cfg_.core.rate_hz;
+  full.calibration = cfg_.core.calibration;
+  c.capture = capture::CaptureController(full);
+  c.capture_cycles = static_cast<std::int64_t>(std::llround(seconds * cfg_.core.rate_hz));
+  if (!post(c)) {
+    why = "the loop is not taking commands";
+    return false;
+  }
+  return true;
+}
+
+bool Daemon::clear_faults() {
+  if (poller_ && (poller_->status() & modbus::status::kAmpTripMask)) {
+    poller_->clear_faults();
+    // Wait for a read that shows the amplifier's fault word cleared.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(300);
+    while ((poller_->status() & modbus::status::kAmpTripMask) && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  CoreCommand c;
+  c.kind = CoreCommand::ClearFault;
+  return post(c);
+}
+
+std::vector<FinishedRecording> Daemon::finished() {
+  std::lock_guard lock(finished_mutex_);
+  std::vector<FinishedRecording> out;
+  out.swap(finished_);
+  return out;
+}
+
+std::uint32_t Daemon::modbus_status() const { return poller_ ? poller_->status() : 0; }
+
+std::uint64_t Daemon::ring_dropped() const { return impl_->ring->dropped(); }
+
+// The writer thread: ring → store (committed batches) and telemetry.
+void Daemon::writer_main() {
+  LoopRecord batch[512];
+  std::uint64_t seen_dropped = 0;
+  for (;;) {
+    const bool done = loop_done_.load(std::memory_order_acquire);
+    const std::size_t n = impl_->ring->pop_bulk(batch);
+    const std::uint64_t dropped = impl_->ring->dropped();
+    for (std::size_t i = 0; i < n; ++i) {
+      const LoopRecord& r = batch[i];
+      try {
+        recorder_->take(r, i == 0 ? dropped - seen_dropped : 0);
+      } catch (const std::exception& e) {
+        // The store failed (disk full, removed file…): say so and keep the
+        // loop's ring moving; the capture stays 'incomplete' in the store.
+        std::fprintf(stderr, "hapticd: recording failed: %s\n", e.what());
+        recorder_->drop_open();
+      }
+      if (impl_->telemetry) {
+        control::TelemetrySample ts;
+        ts.t = static_cast<double>(r.now_ns) * 1e-9;
+        ts.theta = r.sample.theta;
+        ts.omega = r.sample.omega;
+        ts.torque = r.sample.torque;
+        ts.command = -r.sample.command * cfg_.core.limits.torque_per_volt;
+        ts.mode = static_cast<std::uint32_t>(r.mode);
+        ts.fault_bits = r.sample.flags;
+        impl_->telemetry->push(ts);
+      }
+    }
+    seen_dropped = dropped;
+    auto fin = recorder_->take_finished();
+    publish_events(fin);
+    if (!fin.empty()) {
+      std::lock_guard lock(finished_mutex_);
+      finished_.insert(finished_.end(), fin.begin(), fin.end());
+    }
+    if (n == 0) {
+      if (done) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+  }
+  recorder_->close();
+  auto fin = recorder_->take_finished();
+  publish_events(fin);
+  std::lock_guard lock(finished_mutex_);
+  finished_.insert(finished_.end(), fin.begin(), fin.end());
+}
+
+void Daemon::publish_events(const std::vector<FinishedRecording>& finished) {
+  if (impl_->handler && impl_->server) impl_->handler->publish_events(*impl_->server, finished);
+}
+
+rt::LoopResult Daemon::run() {
+  if (poller_) {
+    poller_->start();
+    // The poller reports the amplifier lost until its first good read; give
+    // it a moment so start-up does not latch a fault that isn't one. If the
+    // amplifier stays silent, the loop starts in the safe state, as it must.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+    while ((poller_->status() & modbus::status::kAmpTripMask) != 0 &&
+           std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  if (impl_->server) impl_->server->start();
+  impl_->writer = std::thread([this] { writer_main(); });
+
+  capture::Daq& daq = *daq_;
+  hal::DigitalLines& lines = *lines_;
+  HapticCore& core = *core_;
+  RecordRing& ring = *impl_->ring;
+  const std::atomic<std::uint32_t>* amp_status = poller_ ? &poller_->status_word() : nullptr;
+
+  rt::LoopResult result = rt::run(
+      cfg_.loop,
+      [&](const rt::CycleInfo& info) {
+        capture::DaqInputs in;
+        hal::DigitalInputs din;
+        daq.read(in);
+        lines.read(din);
+        const std::uint32_t external =
+            amp_status ? faults_from_modbus(amp_status->load(std::memory_order_acquire)) : 0u;
+        capture::DaqOutputs out;
+        LoopRecord rec;
+        core.cycle(in, {din.estop, din.capture_button}, info.consecutive_overruns, external, out, rec);
+        daq.write(out);
+        lines.write({out.amp_enable, (rec.sample.flags & interchange::kFaultLatched) == 0});
+        rec.now_ns = info.now_ns;
+        ring.try_push(rec);
+      },
+      stop_, stats_.get());
+
+  // Safe state on the way out, whatever the loop was doing.
+  daq.write({});
+  lines.write({});
+  loop_done_.store(true, std::memory_order_release);
+  if (impl_->writer.joinable()) impl_->writer.join();
+  if (impl_->server) impl_->server->stop();
+  if (poller_) poller_->stop();
+  return result;
+}
+
+}  // namespace knoblab::hapticd

@@ -1,0 +1,185 @@
+// hapticd: the realtime task. Reads its backends from a JSON config or flags,
+// runs the loop until SIGTERM/SIGINT (or --cycles), then leaves the motor safe.
+//
+//   hapticd --backend sim --knob moderate-detents --db /var/lib/knoblab/lab.sqlite
+//           --socket /run/knoblab/hapticd.sock
+//   hapticd --backend sim --rate 10000 --cycles 200000 --free-run --stats-json bench.json
+#include <csignal>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "knoblab/capture/sim_daq.hpp"
+#include "knoblab/hal/factory.hpp"
+#include "knoblab/hal/memory_lines.hpp"
+#include "knoblab/hapticd/daemon.hpp"
+#include "knoblab/rt/stats_json.hpp"
+#include "knoblab/rt/timing_stats.hpp"
+
+namespace {
+
+using knoblab::hapticd::Daemon;
+using nlohmann::json;
+
+std::atomic<Daemon*> g_daemon{nullptr};
+
+void on_signal(int) {
+  if (Daemon* d = g_daemon.load()) d->stop();
+}
+
+const char* kUsage =
+    "usage: hapticd [OPTIONS]\n"
+    "  --config FILE        JSON: {\"daq\": {...}, \"lines\": {...}, \"modbus\": {...}, ...} (docs/hal.md)\n"
+    "  --backend sim|comedi DAQ backend (default sim); --daq-config FILE for comedi\n"
+    "  --knob PRESET        sim: the simulated knob (default moderate-detents)\n"
+    "  --lines memory|gpiod digital lines (default memory); --lines-config FILE for gpiod\n"
+    "  --rate HZ            loop rate, 1..20000 (default 10000)\n"
+    "  --priority N --cpu N SCHED_FIFO priority (default 80), CPU to pin to\n"
+    "  --socket PATH        control socket (docs/protocol.md); --group NAME owns it\n"
+    "  --db FILE            store for captures and biometrics\n"
+    "  --telemetry NAME     shared-memory telemetry ring, e.g. /knoblab-telemetry\n"
+    "  --modbus HOST:PORT   amplifier + biometrics box over Modbus TCP\n"
+    "  --cycles N           stop after N cycles\n"
+    "  --free-run           run cycles back to back (benchmark); renders a model with\n"
+    "                       detents, damping and virtual-mass inertia\n"
+    "  --stats-json FILE    write the loop's timing figures as JSON at exit\n";
+
+struct Options {
+  json daq = {{"backend", "sim"}, {"knob", "moderate-detents"}};
+  json lines = {{"backend", "memory"}, {"estop", "released"}};
+  knoblab::hapticd::DaemonConfig cfg;
+  std::string stats_json;
+};
+
+std::string need(const std::vector<std::string>& a, std::size_t& i) {
+  if (i + 1 >= a.size()) throw std::invalid_argument(a[i] + " needs a value");
+  return a[++i];
+}
+
+Options parse(const std::vector<std::string>& a) {
+  Options o;
+  o.cfg.loop.priority = 80;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const std::string& k = a[i];
+    if (k == "--help" || k == "-h") {
+      std::cout << kUsage;
+      std::exit(0);
+    } else if (k == "--config") {
+      const json c = knoblab::hal::load_config_file(need(a, i));
+      if (c.contains("daq")) o.daq = c.at("daq");
+      if (c.contains("lines")) o.lines = c.at("lines");
+    } else if (k == "--backend") {
+      o.daq["backend"] = need(a, i);
+    } else if (k == "--daq-config") {
+      o.daq = knoblab::hal::load_config_file(need(a, i));
+    } else if (k == "--knob") {
+      o.daq["knob"] = need(a, i);
+    } else if (k == "--lines") {
+      o.lines = {{"backend", need(a, i)}};
+    } else if (k == "--lines-config") {
+      o.lines = knoblab::hal::load_config_file(need(a, i));
+    } else if (k == "--rate") {
+      o.cfg.core.rate_hz = std::stod(need(a, i));
+    } else if (k == "--priority") {
+      o.cfg.loop.priority = std::stoi(need(a, i));
+    } else if (k == "--cpu") {
+      o.cfg.loop.cpu = std::stoi(need(a, i));
+    } else if (k == "--socket") {
+      o.cfg.socket_path = need(a, i);
+    } else if (k == "--group") {
+      o.cfg.socket_group = need(a, i);
+    } else if (k == "--db") {
+      o.cfg.db = need(a, i);
+    } else if (k == "--telemetry") {
+      o.cfg.telemetry_shm = need(a, i);
+    } else if (k == "--modbus") {
+      const std::string hp = need(a, i);
+      const auto colon = hp.rfind(':');
+      if (colon == std::string::npos) throw std::invalid_argument("--modbus wants HOST:PORT");
+      knoblab::modbus::PollerConfig pc;
+      for (auto* e : {&pc.amplifier, &pc.biometrics}) {
+        e->host = hp.substr(0, colon);
+        e->port = static_cast<std::uint16_t>(std::stoi(hp.substr(colon + 1)));
+      }
+      o.cfg.modbus = pc;
+    } else if (k == "--cycles") {
+      o.cfg.loop.max_cycles = std::stoll(need(a, i));
+    } else if (k == "--free-run") {
+      o.cfg.loop.free_run = true;
+    } else if (k == "--stats-json") {
+      o.stats_json = need(a, i);
+    } else {
+      throw std::invalid_argument("unknown option " + k + " (see --help)");
+    }
+  }
+  if (o.daq.value("backend", "") == "sim") o.daq["rate_hz"] = o.cfg.core.rate_hz;
+  o.cfg.knob = o.daq.value("knob", "");
+  return o;
+}
+
+// The benchmark's model: the moderate-detents knob as the renderer sees it.
+void render_benchmark_model(Daemon& d) {
+  knoblab::hapticd::CoreCommand c;
+  c.kind = knoblab::hapticd::CoreCommand::SetRender;
+  c.immediate = true;
+  c.render.M_acc = 0.049e-3;
+  c.render.B_vel = 0.52e-3;
+  c.render.A_pos = 11e-3;
+  c.render.P_pos = 1.0 / 12.0;
+  d.post(c);
+  c.kind = knoblab::hapticd::CoreCommand::SetMode;
+  c.mode = knoblab::hapticd::Mode::Render;
+  d.post(c);
+}
+
+json stats_json(const knoblab::rt::LoopResult& r, const knoblab::hapticd::DaemonConfig& cfg, std::uint64_t dropped) {
+  const auto s = knoblab::rt::summarize(r.stats);
+  json j;
+  j["cycles"] = s.cycles;
+  j["rate_hz"] = cfg.core.rate_hz;
+  j["free_run"] = cfg.loop.free_run;
+  j["cycle_cost_ns"] = {{"median", s.compute.median_ns}, {"p99", s.compute.p99_ns},
+                        {"p999", s.compute.p999_ns}, {"max", s.compute.max_ns}, {"mean", s.compute.mean_ns}};
+  if (!cfg.loop.free_run)
+    j["wakeup_latency_ns"] = {{"median", s.wakeup.median_ns}, {"p99", s.wakeup.p99_ns},
+                              {"p999", s.wakeup.p999_ns}, {"max", s.wakeup.max_ns}};
+  j["overruns"] = s.overruns;
+  j["ring_dropped"] = dropped;
+  j["realtime"] = r.realtime;
+  j["backend"] = knoblab::rt::backend_name();
+  j["stop_reason"] = knoblab::rt::to_string(r.stop_reason);
+  return j;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    Options o = parse(std::vector<std::string>(argv + 1, argv + argc));
+    auto daq = knoblab::hal::make_daq(o.daq, "daq");
+    if (auto* sim = dynamic_cast<knoblab::capture::SimDaq*>(daq.get())) o.cfg.core.calibration = sim->calibration();
+    auto lines = knoblab::hal::make_lines(o.lines, "lines");
+    Daemon daemon(o.cfg, std::move(daq), std::move(lines));
+    if (o.cfg.loop.free_run) render_benchmark_model(daemon);
+    g_daemon.store(&daemon);
+    std::signal(SIGTERM, on_signal);
+    std::signal(SIGINT, on_signal);
+    const knoblab::rt::LoopResult r = daemon.run();
+    g_daemon.store(nullptr);
+    for (const auto& w : r.warnings) std::cerr << "hapticd: warning: " << w << "\n";
+    const json stats = stats_json(r, o.cfg, daemon.ring_dropped());
+    if (!o.stats_json.empty()) {
+      std::ofstream f(o.stats_json);
+      f << stats.dump(2) << "\n";
+      if (!f) throw std::runtime_error("cannot write " + o.stats_json);
+    }
+    std::cout << stats.dump() << "\n";
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "hapticd: error: " << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,161 @@
+// The hapticd side of Modbus: a non-realtime thread that polls the servo
+// amplifier and the biometrics box, runs queued amplifier commands and
+// reconnects with backoff. The realtime loop only ever reads status(), one
+// lock-free atomic load; nothing here blocks or allocates on its behalf.
+//
+//   Poller poller(config);              // throws std::invalid_argument on bad config
+//   poller.start();
+//   … loop, each cycle:  if (poller.status() & status::kAmpTripMask) zero_torque();
+//   … UI / session code: poller.enable(); poller.set_current_limit(5.0);
+//   poller.stop();                      // joins within ~2 response timeouts
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "knoblab/modbus/codec.hpp"
+#include "knoblab/modbus/connection.hpp"
+#include "knoblab/modbus/endpoint.hpp"
+#include "knoblab/modbus/sample_sequencer.hpp"
+#include "knoblab/modbus/status_bits.hpp"
+
+namespace knoblab::modbus {
+
+using Millis = std::chrono::milliseconds;
+
+struct PollerConfig {
+  ModbusEndpoint amplifier = default_endpoint(kDefaultAmplifierUnit);
+  ModbusEndpoint biometrics = default_endpoint(kDefaultBiometricsUnit);
+  bool poll_amplifier = true;
+  bool poll_biometrics = true;
+
+  Millis amplifier_period{10};   // 100 Hz
+  Millis biometrics_period{10};  // must be <= 15 ms: >= 64 Hz, twice the box's 32 Hz
+  Millis comms_timeout{50};      // no fresh amp read for this long -> kAmpCommsLost
+  Millis biometrics_timeout{100};// no biometrics read for this long -> kBiometricsLost
+  int stale_periods = 3;         // counter still for more sample periods -> kBiometricsStale
+  Millis enable_grace{50};       // after enabling, time the amp gets to report it
+  Millis backoff_min{20};        // reconnect delay, doubling per failure …
+  Millis backoff_max{500};       // … up to this
+
+  // Called on the poller thread with each 32 Hz sample exactly once, in
+  // counter order. Keep it short (queue to the store): it delays polling.
+  // An exception it throws is caught and lands in PollerStats::last_error.
+  std::function<void(const BiometricSample&)> on_sample;
+
+  static ModbusEndpoint default_endpoint(int unit) {
+    ModbusEndpoint e;
+    e.unit_id = unit;
+    return e;
+  }
+};
+
+struct PollerStats {
+  std::uint64_t amp_reads = 0, amp_errors = 0, amp_exceptions = 0;
+  std::uint64_t bio_reads = 0, bio_errors = 0, bio_exceptions = 0;
+  std::uint64_t samples_delivered = 0, samples_missed = 0, box_restarts = 0;
+  std::uint64_t connects = 0, connect_failures = 0, mismatches = 0;
+  std::uint64_t commands_done = 0, commands_failed = 0, commands_rejected = 0;
+  std::string last_error;
+};
+
+struct AmpCommand {
+  enum class Kind { enable, disable, set_current_limit, clear_faults };
+  Kind kind = Kind::disable;
+  double current_limit = 0.0;  // A, for set_current_limit
+};
+
+class Poller {
+ public:
+  explicit Poller(PollerConfig config);
+  ~Poller();
+  Poller(const Poller&) = delete;
+  Poller& operator=(const Poller&) = delete;
+
+  void start();
+  // Joins both threads. Bounded: the poller thread is at most inside one
+  // request (response_timeout) when asked.
+  void stop();
+
+  // Realtime-safe: one atomic load. Before start() and after stop() it
+  // reports the links lost (fail-safe).
+  std::uint32_t status() const noexcept { return status_.load(std::memory_order_acquire); }
+  const std::atomic<std::uint32_t>& status_word() const noexcept { return status_; }
+
+  // Queue a command for the poller thread (non-realtime callers only).
+  // False if the queue is full, the poller is not running or the value is
+  // out of range (current limit outside 0..20 A, the amp's peak).
+  bool enable() { return submit({AmpCommand::Kind::enable}); }
+  bool disable() { return submit({AmpCommand::Kind::disable}); }
+  bool set_current_limit(double amps) { return submit({AmpCommand::Kind::set_current_limit, amps}); }
+  bool clear_faults() { return submit({AmpCommand::Kind::clear_faults}); }
+  bool submit(AmpCommand command);
+
+  PollerStats stats() const;
+  std::optional<AmplifierStatus> amplifier() const;  // last good read
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  struct Link;
+
+  void run();
+  void supervise();
+  void publish(Clock::time_point now);
+  bool ensure_open(Link& link, Clock::time_point now);
+  void on_error(Link& link, const IoResult& r, bool amplifier);
+  void poll_amplifier();
+  void poll_biometrics();
+  void run_commands();
+  bool execute(const AmpCommand& c);
+  void set_io_bit(std::uint32_t bit, bool on);
+  void note_error(const std::string& message);
+
+  const PollerConfig config_;
+  std::vector<std::unique_ptr<Link>> links_;
+  Link* amp_link_ = nullptr;
+  Link* bio_link_ = nullptr;
+
+  std::atomic<std::uint32_t> status_;
+
+  // Facts the poller thread learns; the supervisor turns them into status_
+  // (it alone writes status_, so the word is always self-consistent).
+  std::atomic<std::uint32_t> io_bits_{0};
+  std::atomic<std::int64_t> amp_fresh_ns_{0};  // last read with the heartbeat moving
+  std::atomic<std::int64_t> bio_ok_ns_{0};     // last good biometrics read
+  std::atomic<std::int64_t> bio_advance_ns_{0};// last read with a new counter
+  std::atomic<int> bio_rate_hz_{bio::kRateHz};
+
+  // Poller-thread-only state.
+  SampleSequencer sequencer_;
+  std::optional<std::uint16_t> last_heartbeat_;
+  std::optional<std::uint32_t> last_counter_;
+  bool commanded_enabled_ = false;
+  Clock::time_point enabled_at_{};
+  bool amp_mismatch_ = false;
+  bool bio_mismatch_ = false;
+
+  mutable std::mutex mutex_;  // queue_, stop_, stats_, last_amp_
+  std::condition_variable wake_;
+  std::deque<AmpCommand> queue_;
+  bool stop_ = false;
+  bool running_ = false;
+  PollerStats stats_;
+  std::uint64_t sequencer_missed_ = 0;
+  std::uint64_t sequencer_restarts_ = 0;
+  std::optional<AmplifierStatus> last_amp_;
+
+  std::thread io_thread_;
+  std::thread supervisor_thread_;
+};
+
+}  // namespace knoblab::modbus

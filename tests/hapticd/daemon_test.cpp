@@ -1,0 +1,234 @@
+// The daemon as it runs: the paced realtime loop over the sim DAQ and
+// in-process lines, the ring, the writer, the store.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+
+#include "knoblab/capture/sim_daq.hpp"
+#include "knoblab/hal/memory_lines.hpp"
+#include "knoblab/hapticd/daemon.hpp"
+#include "knoblab/sim/presets.hpp"
+#include "knoblab/store/store.hpp"
+
+namespace knoblab::hapticd {
+namespace {
+
+struct TempDb {
+  std::filesystem::path dir;
+  TempDb() {
+    std::string tmpl = "/tmp/knoblab-daemon-XXXXXX";
+    dir = mkdtemp(tmpl.data());
+  }
+  ~TempDb() { std::filesystem::remove_all(dir); }
+  std::filesystem::path path() const { return dir / "lab.sqlite"; }
+};
+
+struct Rig {
+  hal::MemoryLines* lines = nullptr;  // owned by the daemon
+  std::unique_ptr<Daemon> daemon;
+  std::thread loop;
+
+  Rig(const std::filesystem::path& db, const char* knob) {
+    sim::PlantConfig plant;
+    plant.knob = *sim::presets::knob(knob);
+    plant.initial_angle = 0.13;  // on a detent flank, so rendering pushes
+    auto daq = std::make_unique<capture::SimDaq>(plant, 10000.0);
+    DaemonConfig cfg;
+    cfg.core.rate_hz = 10000.0;
+    cfg.core.calibration = daq->calibration();
+    cfg.db = db;
+    cfg.knob = knob;
+    cfg.loop.lock_memory = false;  // tests share the machine
+    auto l = std::make_unique<hal::MemoryLines>(false);
+    lines = l.get();
+    daemon = std::make_unique<Daemon>(cfg, std::move(daq), std::move(l));
+    loop = std::thread([this] { daemon->run(); });
+  }
+  ~Rig() {
+    daemon->stop();
+    loop.join();
+  }
+  std::vector<FinishedRecording> wait_finished(std::chrono::seconds timeout) {
+    const auto end = std::chrono::steady_clock::now() + timeout;
+    while (std::chrono::steady_clock::now() < end) {
+      auto f = daemon->finished();
+      if (!f.empty()) return f;
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return {};
+  }
+};
+
+// Acceptance: 6 s of the moderate-detents knob at 10 kHz through the real
+// loop; the store holds exactly 60 000 samples per channel, none dropped.
+TEST(Daemon, CapturesSixSecondsAtTenKilohertzWithoutLoss) {
+  TempDb db;
+  {
+    Rig rig(db.path(), "moderate-detents");
+    capture::CaptureConfig cc;  // Table 3 spatial sweep, thesis PID
+    std::string why;
+    ASSERT_TRUE(rig.daemon->start_capture(cc, 6.0, "moderate-detents", why)) << why;
+    const auto f = rig.wait_finished(std::chrono::seconds(30));
+    ASSERT_EQ(f.size(), 1u);
+    EXPECT_EQ(f[0].samples, 60000);
+    EXPECT_TRUE(f[0].complete);
+    EXPECT_EQ(rig.daemon->ring_dropped(), 0u);
+  }
+  store::Store s = store::Store::open(db.path());
+  const auto caps = s.list_captures();
+  ASSERT_EQ(caps.size(), 1u);
+  EXPECT_EQ(caps[0].status, "complete");
+  EXPECT_EQ(caps[0].source, "hapticd");
+  EXPECT_EQ(caps[0].knob, "moderate-detents");
+  const interchange::Capture c = s.load_samples(caps[0].id);
+  for (const auto* ch : {&c.t, &c.theta, &c.omega, &c.alpha, &c.torque, &c.command})
+    EXPECT_EQ(ch->size(), 60000u);
+  for (std::size_t i = 0; i < c.t.size(); ++i) ASSERT_EQ(c.t[i], static_cast<double>(i) * (1.0 / 10000.0));
+  // The stimulus really moved the knob (±1 rad swept sine).
+  double lo = 0, hi = 0;
+  for (double th : c.theta) lo = std::min(lo, th), hi = std::max(hi, th);
+  EXPECT_LT(lo, -0.9);
+  EXPECT_GT(hi, 0.9);
+}
+
+// Acceptance: the e-stop pulled mid-render zeroes the torque command in the
+// same or the next cycle and drops amplifier enable, visibly in the samples.
+TEST(Daemon, EstopMidRenderIsVisibleInTheRecordedSamples) {
+  TempDb db;
+  std::int64_t capture_id = 0;
+  {
+    Rig rig(db.path(), "moderate-detents");
+    CoreCommand c;
+    c.kind = CoreCommand::SetRender;
+    c.immediate = true;
+    c.render.B_vel = 0.02;
+    c.render.A_pos = 0.04;
+    c.render.P_pos = 1.0 / 12.0;
+    ASSERT_TRUE(rig.daemon->post(c));
+    c.kind = CoreCommand::SetMode;
+    c.mode = Mode::Render;
+    ASSERT_TRUE(rig.daemon->post(c));
+    c.kind = CoreCommand::StartRecording;
+    ASSERT_TRUE(rig.daemon->post(c));
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    rig.lines->press_estop();
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    EXPECT_FALSE(rig.lines->amp_enable());
+    c.kind = CoreCommand::StopRecording;
+    ASSERT_TRUE(rig.daemon->post(c));
+    const auto f = rig.wait_finished(std::chrono::seconds(10));
+    ASSERT_EQ(f.size(), 1u);
+    capture_id = f[0].capture_id;
+    EXPECT_EQ(rig.daemon->core().state().faults, kFaultEstop);
+  }
+  store::Store s = store::Store::open(db.path());
+  const interchange::Capture c = s.load_samples(capture_id);
+  ASSERT_GT(c.size(), 1000u);
+  std::size_t first = c.size();
+  for (std::size_t i = 0; i < c.size(); ++i)
+    if (c.flags[i] & interchange::kEstopActive) {
+      first = i;
+      break;
+    }
+  ASSERT_LT(first, c.size()) << "the e-stop never shows in the samples";
+  ASSERT_GT(first, 100u);
+  // Before: rendering, amplifier on, a torque commanded.
+  int driving = 0;
+  for (std::size_t i = first - 100; i < first; ++i) {
+    EXPECT_TRUE(c.flags[i] & interchange::kAmpEnabled) << i;
+    driving += c.command[i] != 0.0;
+  }
+  EXPECT_GT(driving, 0);
+  // From that very cycle on: zero command, amplifier off, fault latched.
+  for (std::size_t i = first; i < c.size(); ++i) {
+    ASSERT_EQ(c.command[i], 0.0) << i;
+    ASSERT_FALSE(c.flags[i] & interchange::kAmpEnabled) << i;
+    ASSERT_TRUE(c.flags[i] & interchange::kFaultLatched) << i;
+  }
+}
+
+}  // namespace
+}  // namespace knoblab::hapticd
+
+#include "knoblab/modbus/sim_server.hpp"
+
+namespace knoblab::hapticd {
+namespace {
+
+std::uint32_t wait_for_faults(Daemon& d, std::uint32_t bits, std::chrono::milliseconds timeout) {
+  const auto end = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < end) {
+    if (d.core().state().faults & bits) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return d.core().state().faults;
+}
+
+// Acceptance: against knoblab-modbus-sim over TCP loopback, biometrics arrive
+// at 32 Hz into the store; an amplifier fault or a disconnect puts the loop
+// in the safe state.
+TEST(Daemon, ModbusBiometricsAtThirtyTwoHertzAndAmplifierFaultsGoSafe) {
+  modbus::SimConfig sc;
+  sc.port = 0;
+  modbus::SimServer server(sc);
+  std::string error;
+  ASSERT_TRUE(server.start(&error)) << error;
+
+  TempDb db;
+  sim::PlantConfig plant;
+  plant.knob = *sim::presets::knob("moderate-detents");
+  auto daq = std::make_unique<capture::SimDaq>(plant, 10000.0);
+  DaemonConfig cfg;
+  cfg.core.rate_hz = 10000.0;
+  cfg.core.calibration = daq->calibration();
+  cfg.db = db.path();
+  cfg.loop.lock_memory = false;
+  modbus::PollerConfig pc;
+  pc.amplifier.host = pc.biometrics.host = "127.0.0.1";
+  pc.amplifier.port = pc.biometrics.port = server.port();
+  cfg.modbus = pc;
+  Daemon daemon(cfg, std::move(daq), std::make_unique<hal::MemoryLines>(false));
+  std::thread loop([&] { daemon.run(); });
+
+  capture::CaptureConfig cc;
+  std::string why;
+  ASSERT_TRUE(daemon.start_capture(cc, 3.0, "moderate-detents", why)) << why;
+  std::vector<FinishedRecording> f;
+  for (int i = 0; i < 500 && f.empty(); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    f = daemon.finished();
+  }
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_EQ(daemon.core().state().faults, 0u);
+
+  // An amplifier fault, then a lost link: each latches the safe state.
+  server.set_amp_fault(1);
+  EXPECT_TRUE(wait_for_faults(daemon, kFaultAmplifier, std::chrono::milliseconds(1000)) & kFaultAmplifier);
+  server.set_amp_fault(0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  ASSERT_TRUE(daemon.clear_faults());
+  for (int i = 0; i < 100 && daemon.core().state().faults != 0; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  EXPECT_EQ(daemon.core().state().faults, 0u);
+  server.drop_connections(std::chrono::milliseconds(1000));
+  EXPECT_TRUE(wait_for_faults(daemon, kFaultAmpComms, std::chrono::milliseconds(1000)) & kFaultAmpComms);
+
+  daemon.stop();
+  loop.join();
+  server.stop();
+
+  store::Store s = store::Store::open(db.path());
+  const auto bio = s.load_biometrics(f[0].capture_id);
+  EXPECT_NEAR(static_cast<double>(bio.size()), 3.0 * 32.0, 4.0);  // 32 Hz over 3 s
+  for (std::size_t i = 1; i < bio.size(); ++i) {
+    EXPECT_EQ(bio[i].seq, bio[i - 1].seq + 1);  // none missed, none twice
+    EXPECT_NEAR(bio[i].t - bio[i - 1].t, 1.0 / 32.0, 0.03);
+  }
+  ASSERT_FALSE(bio.empty());
+  EXPECT_GE(bio.front().t, -0.05);
+  EXPECT_LE(bio.back().t, 3.05);
+}
+
+}  // namespace
+}  // namespace knoblab::hapticd

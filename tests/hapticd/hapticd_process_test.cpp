@@ -1,0 +1,181 @@
+// hapticd as a process: its control socket under hostile input, and a capture
+// requested over the protocol.
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <thread>
+
+#include "knoblab/control/client.hpp"
+#include "knoblab/control/framing.hpp"
+#include "knoblab/store/store.hpp"
+
+extern char** environ;
+
+namespace knoblab::hapticd {
+namespace {
+
+namespace fs = std::filesystem;
+
+class Hapticd {
+ public:
+  explicit Hapticd(std::vector<std::string> extra) {
+    std::string tmpl = "/tmp/knoblab-hapticd-XXXXXX";
+    dir_ = mkdtemp(tmpl.data());
+    socket_ = (dir_ / "h.sock").string();
+    std::vector<std::string> args = {KNOBLAB_HAPTICD_PATH, "--backend", "sim", "--knob", "moderate-detents",
+                                     "--socket", socket_, "--db", (dir_ / "lab.sqlite").string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    const std::string log = (dir_ / "hapticd.log").string();
+    posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_adddup2(&fa, STDOUT_FILENO, STDERR_FILENO);
+    if (posix_spawn(&pid_, argv[0], &fa, nullptr, argv.data(), environ) != 0) pid_ = -1;
+    posix_spawn_file_actions_destroy(&fa);
+    for (int i = 0; i < 500 && !fs::exists(socket_); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ~Hapticd() {
+    if (pid_ > 0 && alive()) {
+      ::kill(pid_, SIGKILL);
+      ::waitpid(pid_, nullptr, 0);
+    }
+    fs::remove_all(dir_);
+  }
+  bool alive() const { return ::waitpid(pid_, nullptr, WNOHANG) == 0; }
+  // SIGTERM and the exit status (0 = clean shutdown).
+  int terminate() {
+    ::kill(pid_, SIGTERM);
+    int status = 0;
+    ::waitpid(pid_, &status, 0);
+    pid_ = -1;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+  const std::string& socket() const { return socket_; }
+  fs::path db() const { return dir_ / "lab.sqlite"; }
+  std::string log() const {
+    std::ifstream in(dir_ / "hapticd.log");
+    return {std::istreambuf_iterator<char>(in), {}};
+  }
+
+ private:
+  fs::path dir_;
+  std::string socket_;
+  pid_t pid_ = -1;
+};
+
+// Writes raw bytes on a fresh connection, reads whatever comes back for a
+// moment, and hangs up (mid-frame, often: that is the point).
+void send_raw(const std::string& path, const std::string& bytes) {
+  const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  sockaddr_un addr{};
+  addr.sun_family = AF_UNIX;
+  std::snprintf(addr.sun_path, sizeof addr.sun_path, "%s", path.c_str());
+  if (::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0) {
+    (void)!::send(fd, bytes.data(), bytes.size(), MSG_NOSIGNAL);
+    timeval tv{0, 20000};
+    ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
+    char buf[4096];
+    while (::recv(fd, buf, sizeof buf, 0) > 0) {
+    }
+  }
+  ::close(fd);
+}
+
+bool answers(const std::string& socket) {
+  try {
+    control::Client c(socket);
+    c.hello();
+    return c.call("get_state").contains("mode");
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+// Acceptance: fuzzed control-socket input (a fixed corpus plus seeded random
+// cases) never crashes hapticd, and it keeps serving a good client.
+TEST(HapticdProcess, FuzzedControlInputNeverCrashesIt) {
+  Hapticd d({"--rate", "1000"});
+  ASSERT_TRUE(answers(d.socket())) << d.log();
+  int cases = 0;
+  for (const auto& entry : fs::directory_iterator(KNOBLAB_CONTROL_CORPUS)) {
+    if (entry.path().extension() != ".bin") continue;
+    std::ifstream in(entry.path(), std::ios::binary);
+    send_raw(d.socket(), {std::istreambuf_iterator<char>(in), {}});
+    ++cases;
+    ASSERT_TRUE(d.alive()) << entry.path() << "\n" << d.log();
+  }
+  EXPECT_GT(cases, 10);
+  std::mt19937_64 rng(20261122);
+  const std::vector<std::string> valid = {
+      R"({"v":1,"id":1,"cmd":"get_state","args":{}})",
+      R"({"v":1,"id":2,"cmd":"load_model","args":{"M_acc":1e-5,"B_vel":0.001,"A_pos":0.01,"P_pos":0.08}})",
+      R"({"v":1,"id":3,"cmd":"set_mode","args":{"mode":"render"}})",
+      R"({"v":1,"id":4,"cmd":"start_capture","args":{"seconds":0.1,"knob":"k","swept_sine":{"a":0,"b":1.5,"c":1,"d":3}}})",
+      R"({"v":1,"id":5,"cmd":"set_params","args":{"A_pos":0.02}})",
+      R"({"v":1,"id":6,"cmd":"clear_fault","args":{}})"};
+  for (int i = 0; i < 400; ++i) {
+    std::string bytes;
+    switch (i % 4) {
+      case 0:  // random bytes
+        for (std::size_t n = rng() % 300; n > 0; --n) bytes.push_back(static_cast<char>(rng()));
+        break;
+      case 1: {  // a valid frame with bytes flipped
+        bytes = control::encode_frame(valid[rng() % valid.size()]);
+        for (int k = 0; k < 1 + static_cast<int>(rng() % 4); ++k) bytes[rng() % bytes.size()] = static_cast<char>(rng());
+        break;
+      }
+      case 2:  // a valid frame cut short
+        bytes = control::encode_frame(valid[rng() % valid.size()]);
+        bytes.resize(rng() % bytes.size());
+        break;
+      default:  // valid frames, then garbage
+        bytes = control::encode_frame(valid[rng() % valid.size()]) + control::encode_frame(valid[rng() % valid.size()]);
+        bytes += std::string(1 + rng() % 8, static_cast<char>(0xff));
+    }
+    send_raw(d.socket(), bytes);
+    if (i % 50 == 49) {
+      ASSERT_TRUE(d.alive() && answers(d.socket())) << "case " << i << "\n" << d.log();
+    }
+  }
+  EXPECT_TRUE(answers(d.socket()));
+  EXPECT_EQ(d.terminate(), 0) << d.log();
+}
+
+// A capture asked for over the protocol lands in the store, complete.
+TEST(HapticdProcess, CaptureOverTheProtocolLandsInTheStore) {
+  Hapticd d({"--rate", "10000"});
+  control::Client c(d.socket(), std::chrono::seconds(5));
+  c.hello();
+  c.call("subscribe", {{"events", {"capture_finished"}}});
+  const auto r = c.call("start_capture", {{"seconds", 1.0},
+                                          {"knob", "moderate-detents"},
+                                          {"swept_sine", {{"a", 0}, {"b", 1.5}, {"c", 1.0}, {"d", 3}}}});
+  EXPECT_EQ(r.at("samples"), 10000);
+  const auto ev = c.wait_event(std::chrono::seconds(10));
+  ASSERT_TRUE(ev) << d.log();
+  EXPECT_EQ(ev->name, "capture_finished");
+  EXPECT_EQ(ev->data.at("samples"), 10000);
+  EXPECT_EQ(d.terminate(), 0) << d.log();
+  store::Store s = store::Store::open(d.db());
+  const auto caps = s.list_captures();
+  ASSERT_EQ(caps.size(), 1u);
+  EXPECT_EQ(caps[0].status, "complete");
+  EXPECT_EQ(caps[0].sample_count, 10000);
+}
+
+}  // namespace
+}  // namespace knoblab::hapticd
