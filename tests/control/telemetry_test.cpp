@@ -267,7 +267,7 @@ TEST(Telemetry, ConcurrentWriterAndReadersNeverTear) {
     EXPECT_EQ(t->torn, 0u);
     EXPECT_EQ(t->gaps, 0u);
     EXPECT_EQ(t->read + t->lost, records) << "every record is either read or counted lost";
-    EXPECT_GE(t->read, 100u) << "the readers hardly ran";
+    EXPECT_GE(t->read, 16u) << "the readers hardly ran";
     EXPECT_GT(t->lost, 0u) << "a 16-slot ring at full speed must overrun";
   }
   std::printf("[          ] %llu records; reader 1: %llu read, %llu lost; reader 2: %llu read, %llu lost\n",

@@ -100,3 +100,52 @@ TEST(RenderController, StickBandHoldsUpToTheStaticLimit) {
 
 }  // namespace
 }  // namespace knoblab::hapticd
+
+namespace knoblab::hapticd {
+namespace {
+
+TEST(RenderController, PositionAndTimeTilesAddToTheModel) {
+  Bench b;
+  // A position tile: stiffness f_pos(θ) = 0.5 N·m/rad between 0 and 1 rad (Eq. 19).
+  const std::vector<double> x = {0.0, 0.5, 1.0}, k = {0.5, 0.5, 0.5};
+  auto tiles = std::make_unique<TileSet>();
+  model::PositionTile pt;
+  pt.f_pos = model::CubicSpline(x, k);
+  pt.theta_min = 0.0;
+  pt.theta_max = 1.0;
+  tiles->position.push_back(pt);
+  ASSERT_TRUE(b.rc.load_tiles(std::move(tiles)));
+  auto at = [](double) { return 0.4; };
+  EXPECT_NEAR(b.torque_of(b.run(at, 50)), 0.5 * 0.4, 1e-4);  // f_pos(θ)·θ
+  auto outside = [](double) { return 1.5; };
+  EXPECT_NEAR(b.torque_of(b.run(outside, 50, 50)), 0.0, 1e-4);
+
+  // Replace with a time tile: f_pos(t) = 0.1·t for 1 s (Eq. 20), at θ = 0.4.
+  auto next = std::make_unique<TileSet>();
+  model::TimeTile tt;
+  const std::vector<double> ts = {0.0, 0.5, 1.0}, ramp = {0.0, 0.05, 0.1};
+  tt.f_pos = model::CubicSpline(ts, ramp);
+  tt.duration = 1.0;
+  next->time.push_back(tt);
+  ASSERT_TRUE(b.rc.load_tiles(std::move(next)));
+  const double v = b.run(at, 5001, 100);  // 0.5 s after the set started
+  EXPECT_NEAR(b.torque_of(v), 0.05 * 0.4, 1e-3);
+  // Clearing leaves the bare model (here: nothing).
+  ASSERT_TRUE(b.rc.load_tiles(nullptr));
+  EXPECT_NEAR(b.torque_of(b.run(at, 10, 6000)), 0.0, 1e-6);
+}
+
+TEST(Handoff, OffersAreTakenInOrderAndOldObjectsComeBackForDeletion) {
+  Handoff<int> h;
+  EXPECT_EQ(h.current(), nullptr);
+  ASSERT_TRUE(h.publish(std::make_unique<int>(1)));
+  EXPECT_FALSE(h.publish(std::make_unique<int>(2)));  // not yet taken
+  EXPECT_EQ(*h.current(), 1);
+  ASSERT_TRUE(h.publish(std::make_unique<int>(3)));
+  EXPECT_EQ(*h.current(), 3);
+  ASSERT_TRUE(h.publish(nullptr));
+  EXPECT_EQ(h.current(), nullptr);
+}
+
+}  // namespace
+}  // namespace knoblab::hapticd

@@ -31,9 +31,15 @@ void CaptureController::update(const DaqInputs& in, DaqOutputs& out, Sample& s) 
   s.alpha = cal.alpha(in.accel_V, s.theta);
   s.torque = cal.torque(in.torque_V);
 
-  const double ref = cfg_.stimulus.theta(t);
-  const double ref_omega = cfg_.stimulus.omega(t);
-  s.command = pid_.update(ref, ref_omega, s.theta, s.omega, dt);
+  if (cfg_.kind == CaptureConfig::Stimulus::Torque) {
+    // Open loop: the motor applies τ(t); the knob's response is the record.
+    s.command = std::clamp(cfg_.torque_stimulus.torque(t) / cfg_.torque_per_volt, -cfg_.pid.limit_V,
+                           cfg_.pid.limit_V);
+  } else {
+    const double ref = cfg_.stimulus.theta(t);
+    const double ref_omega = cfg_.stimulus.omega(t);
+    s.command = pid_.update(ref, ref_omega, s.theta, s.omega, dt);
+  }
   out.motor_command_V = s.command;
   out.amp_enable = true;
   ++cycle_;

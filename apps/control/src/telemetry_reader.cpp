@@ -50,7 +50,7 @@ bool TelemetryReader::copy(std::uint64_t n, TelemetryRecord& out) const noexcept
   if (slot.seq.load(std::memory_order_acquire) != expected) return false;  // already overwritten
   out = load_record(slot);
   std::atomic_thread_fence(std::memory_order_acquire);
-  return true;
+  return slot.seq.load(std::memory_order_relaxed) == expected;  // else torn: overwritten meanwhile
 }
 
 // Lapped: jump to half a ring behind the writer, so it cannot lap us again

@@ -26,6 +26,35 @@ double get(const json& args, const char* key, double fallback) {
   return args.contains(key) ? args.at(key).get<double>() : fallback;
 }
 
+json stats_json(const ErrorStats& s) { return {{"n", s.n}, {"mean", s.mean}, {"sd", s.sd}}; }
+
+// The event payload of a finished calibration (and get_state's copy).
+json calibration_json(const CalibrationResult& r) {
+  json j;
+  j["kind"] = to_string(r.kind);
+  j["ok"] = r.ok();
+  if (!r.ok()) j["error"] = r.error;
+  j["complete"] = r.complete;
+  j["samples"] = r.cycles;
+  j["torque_limited"] = r.torque_limited;
+  json t4 = json::object();  // thesis Table 4: commanded − measured
+  if (r.table4.theta.n) t4["theta"] = stats_json(r.table4.theta);
+  if (r.table4.omega.n) t4["omega"] = stats_json(r.table4.omega);
+  if (r.table4.alpha.n) t4["alpha"] = stats_json(r.table4.alpha);
+  if (r.table4.torque.n) t4["torque"] = stats_json(r.table4.torque);
+  j["table4"] = t4;
+  if (r.accel)
+    j["accel_gain"] = {{"C_cal", r.accel->C_cal}, {"C_cal_se", r.accel->C_cal_se},
+                       {"residual_sd", r.accel->residual_sd}, {"n", r.accel->n}};
+  if (r.gravity)
+    j["gravity"] = {{"A", r.gravity->A}, {"B", r.gravity->B}, {"C", r.gravity->C}, {"D", r.gravity->D},
+                    {"A_se", r.gravity->A_se}, {"D_se", r.gravity->D_se},
+                    {"cw", {{"A", r.gravity->cw.A}, {"C", r.gravity->cw.C}, {"D", r.gravity->cw.D}}},
+                    {"ccw", {{"A", r.gravity->ccw.A}, {"C", r.gravity->ccw.C}, {"D", r.gravity->ccw.D}}}};
+  j["calibration"] = json::parse(r.updated.to_json());  // the constants with the fit applied
+  return j;
+}
+
 }  // namespace
 
 json ControlHandler::state_json() const {
@@ -38,6 +67,7 @@ json ControlHandler::state_json() const {
   j["rate_hz"] = daemon_.config().core.rate_hz;
   j["modbus"] = modbus::status::describe(daemon_.modbus_status());
   j["ring_dropped"] = daemon_.ring_dropped();
+  if (const auto cal = daemon_.last_calibration()) j["last_calibration"] = calibration_json(*cal);
   return j;
 }
 
@@ -115,13 +145,25 @@ Reply ControlHandler::handle(const control::Request& r) {
       const std::string mode = r.args.at("mode").get<std::string>();
       if (mode == "capture") return Reply::failure(ErrorCode::bad_args, "captures start with start_capture", "mode");
       if (mode == "calibrate")
-        return Reply::failure(ErrorCode::bad_args, "calibration mode is not available in this build", "mode");
+        return Reply::failure(ErrorCode::bad_args, "calibrations start with calibrate", "mode");
       c.kind = CoreCommand::SetMode;
       c.mode = mode == "render" ? Mode::Render : Mode::Idle;
       break;
     }
-    case Command::calibrate:
-      return Reply::failure(ErrorCode::bad_args, "calibration mode is not available in this build", "kind");
+    case Command::calibrate: {
+      const auto kind = parse_calibration_kind(r.args.at("kind").get<std::string>());
+      if (!kind) return Reply::failure(ErrorCode::bad_args, "unknown calibration kind", "kind");
+      CalibrationConfig cc;  // thesis durations: 5 s sweeps, ~16 s a revolution each way
+      cc.kind = *kind;
+      double seconds = 0.0;
+      std::string why;
+      if (!daemon_.start_calibration(cc, seconds, why)) return Reply::failure(ErrorCode::busy, why);
+      return Reply::success({{"kind", to_string(*kind)},
+                             {"seconds", seconds},
+                             {"samples", static_cast<std::int64_t>(
+                                             std::llround(seconds * daemon_.config().core.rate_hz))},
+                             {"event", "calibration_finished"}});
+    }
     default:
       return Reply::failure(ErrorCode::internal, "command not handled by hapticd");
   }
@@ -150,6 +192,8 @@ void ControlHandler::publish_events(control::Server& server, const std::vector<F
   for (const FinishedRecording& f : finished)
     server.publish({"capture_finished",
                     {{"capture_id", f.capture_id}, {"samples", f.samples}, {"complete", f.complete}}});
+  if (const auto cal = daemon_.take_finished_calibration())
+    server.publish({"calibration_finished", calibration_json(*cal)});
 }
 
 }  // namespace knoblab::hapticd

@@ -7,6 +7,7 @@ const char* to_string(Mode m) {
     case Mode::Idle: return "idle";
     case Mode::Render: return "render";
     case Mode::Capture: return "capture";
+    case Mode::Calibrate: return "calibrate";
   }
   return "?";
 }
@@ -38,7 +39,12 @@ void HapticCore::apply(const CoreCommand& c) {
   switch (c.kind) {
     case CoreCommand::SetMode:
       if (c.mode == Mode::Render && mode_ != Mode::Render) render_.reset();
-      if (c.mode != Mode::Capture) mode_ = c.mode;  // capture starts only with StartCapture
+      if (mode_ == Mode::Calibrate && c.mode != Mode::Calibrate) {  // leaving a run early
+        calibration_result_.publish(calibration_.data());
+        recording_ = 0;
+      }
+      // capture and calibration start only with their own commands
+      if (c.mode != Mode::Capture && c.mode != Mode::Calibrate) mode_ = c.mode;
       break;
     case CoreCommand::SetRender:
       render_.set_params(c.render, c.immediate);
@@ -50,16 +56,25 @@ void HapticCore::apply(const CoreCommand& c) {
       recording_ = next_recording_++;
       break;
     case CoreCommand::StopCapture:
-      if (mode_ == Mode::Capture) {
+      if (mode_ == Mode::Capture || mode_ == Mode::Calibrate) {
+        if (mode_ == Mode::Calibrate) calibration_result_.publish(calibration_.data());  // incomplete
         mode_ = Mode::Idle;
         recording_ = 0;
       }
+      break;
+    case CoreCommand::StartCalibration:
+      if (mode_ == Mode::Capture || mode_ == Mode::Calibrate) break;  // one run at a time
+      calibration_ = c.calibration;
+      calibration_left_ = calibration_.cycles();
+      if (calibration_left_ <= 0) break;  // an empty controller: nothing to run
+      mode_ = Mode::Calibrate;
+      recording_ = next_recording_++;  // recorded like a capture
       break;
     case CoreCommand::StartRecording:
       if (recording_ == 0) recording_ = next_recording_++;
       break;
     case CoreCommand::StopRecording:
-      if (mode_ != Mode::Capture) recording_ = 0;
+      if (mode_ != Mode::Capture && mode_ != Mode::Calibrate) recording_ = 0;
       break;
     case CoreCommand::ClearFault:
       clear_requested_ = true;
@@ -82,14 +97,15 @@ void HapticCore::measure_idle(const capture::DaqInputs& in, capture::Sample& s) 
 void HapticCore::cycle(const capture::DaqInputs& in, const LineInputs& lines,
                        std::int64_t consecutive_overruns, std::uint32_t external_faults,
                        capture::DaqOutputs& out, LoopRecord& rec) {
-  CoreCommand c;
-  for (int i = 0; i < 4 && commands_.try_pop(c); ++i) apply(c);
+  // pop_slot_ is built once: a CoreCommand holds controllers whose default
+  // construction designs filters (allocates), which the loop must not do.
+  for (int i = 0; i < 4 && commands_.try_pop(pop_slot_); ++i) apply(pop_slot_);
 
   capture::Sample& s = rec.sample;
   s = {};
   rec.now_ns = 0;
   out = {};
-  bool capture_done = false;
+  bool capture_done = false, calibration_done = false;
   switch (mode_) {
     case Mode::Idle:
       measure_idle(in, s);
@@ -100,6 +116,10 @@ void HapticCore::cycle(const capture::DaqInputs& in, const LineInputs& lines,
     case Mode::Capture:
       capture_.update(in, out, s);
       capture_done = --capture_left_ <= 0;
+      break;
+    case Mode::Calibrate:
+      calibration_.update(in, out, s);
+      calibration_done = --calibration_left_ <= 0;
       break;
   }
 
@@ -118,6 +138,12 @@ void HapticCore::cycle(const capture::DaqInputs& in, const LineInputs& lines,
             (limited ? interchange::kTorqueLimited : 0u);
   rec.recording_id = recording_;
   rec.mode = mode_;
+  if (mode_ == Mode::Calibrate) calibration_.after_output(out, s.flags);
+  if (calibration_done) {
+    calibration_result_.publish(calibration_.data());
+    mode_ = Mode::Idle;
+    recording_ = 0;
+  }
   if (capture_done) {  // that was the capture's last sample
     mode_ = Mode::Idle;
     recording_ = 0;

@@ -135,6 +135,53 @@ bool Daemon::start_capture(const capture::CaptureConfig& cc, double seconds, con
   return true;
 }
 
+bool Daemon::start_calibration(const CalibrationConfig& cfg, double& seconds, std::string& why) {
+  const CoreState s = core_->state();
+  if (s.faults != 0) {
+    why = "a fault is latched; clear it first";
+    return false;
+  }
+  if (s.mode == Mode::Capture || s.mode == Mode::Calibrate || s.recording_id != 0) {
+    why = "a capture, calibration or recording is already running";
+    return false;
+  }
+  CalibrationConfig full = cfg;
+  full.rate_hz = cfg_.core.rate_hz;
+  full.calibration = cfg_.core.calibration;
+  full.torque_per_volt = cfg_.core.limits.torque_per_volt;
+  CoreCommand c;
+  c.kind = CoreCommand::StartCalibration;
+  try {
+    c.calibration = CalibrationController(full);
+  } catch (const std::exception& e) {
+    why = e.what();
+    return false;
+  }
+  store::NewCapture info;
+  info.rate_hz = cfg_.core.rate_hz;
+  info.calibration = full.calibration.to_json();
+  info.source = "hapticd";
+  info.metadata = std::string(R"({"calibration":")") + to_string(full.kind) + "\"}";
+  recorder_->describe_next(info);
+  if (!post(c)) {
+    why = "the loop is not taking commands";
+    return false;
+  }
+  seconds = c.calibration.seconds();
+  return true;
+}
+
+std::optional<CalibrationResult> Daemon::last_calibration() const {
+  if (core_->calibrations_finished() == 0) return std::nullopt;
+  return evaluate(core_->last_calibration());
+}
+
+std::optional<CalibrationResult> Daemon::take_finished_calibration() {
+  const std::uint64_t n = core_->calibrations_finished();
+  if (n == 0 || calibrations_taken_.exchange(n) == n) return std::nullopt;
+  return evaluate(core_->last_calibration());
+}
+
 bool Daemon::clear_faults() {
   if (poller_ && (poller_->status() & modbus::status::kAmpTripMask)) {
     poller_->clear_faults();

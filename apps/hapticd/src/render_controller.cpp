@@ -62,7 +62,20 @@ void RenderController::update(const capture::DaqInputs& in, capture::DaqOutputs&
   m.stick_enabled = target_.stick;
   m.stick = {target_.dv, target_.D_neg, target_.D_pos};
   const model::Kinematics<double> k{s.theta, s.omega, 0.0};  // M = 0: inertia is the virtual mass
-  const double tau = m.torque(k, s.torque - tau_acc) + tau_acc;
+  double tau = m.torque(k, s.torque - tau_acc) + tau_acc;
+
+  // Prototyper tiles: acceleration from the filtered velocity, box-smoothed.
+  const double alpha_est = alpha_box_.process((s.omega - prev_omega_) / dt_);
+  prev_omega_ = s.omega;
+  const TileSet* tiles = tiles_.current();
+  if (tiles != active_tiles_) {
+    active_tiles_ = tiles;
+    tiles_start_t_ = s.t;
+  }
+  if (tiles) {
+    const model::Kinematics<double> kt{s.theta, s.omega, alpha_est};
+    tau += model::total_torque(tiles->position, kt) + model::total_torque(tiles->time, s.t - tiles_start_t_, kt);
+  }
   last_model_torque_ = tau;
 
   // The knob resists with τ, so the motor pushes with −τ.

@@ -1,5 +1,6 @@
 // Capture mode: drive the knob along the swept sine of thesis Eq. 8 with the
-// PID of Eq. 4, and turn each cycle's raw readings into a Sample.
+// PID of Eq. 4 (position stimulus), or push it with a swept-sine torque open
+// loop (torque stimulus), and turn each cycle's raw readings into a Sample.
 // Runs inside the loop: construction allocates, update() never does.
 #pragma once
 
@@ -13,8 +14,12 @@
 namespace knoblab::capture {
 
 struct CaptureConfig {
+  enum class Stimulus { Position, Torque };
   double rate_hz = 5000.0;
-  model::SweptSine stimulus = model::SweptSine::spatial();
+  Stimulus kind = Stimulus::Position;
+  model::SweptSine stimulus = model::SweptSine::spatial();  // Position: θ_ref(t)
+  model::TorqueSweep torque_stimulus{};                      // Torque: τ(t), N·m
+  double torque_per_volt = 0.181 / 12.0;  // amplifier + motor, N·m per command volt
   PidGains pid{};
   SensorCalibration calibration{};
   // Velocity: difference of encoder angle, then a 10th-order Butterworth

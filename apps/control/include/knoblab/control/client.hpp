@@ -42,7 +42,9 @@ class RemoteError : public std::runtime_error {
 struct HelloOptions {
   std::vector<int> versions{kProtocolVersion};
   std::string client_name;
-  std::optional<int> watchdog_ms;  // become the supervising client
+  // Become the supervising client: from then on send a request (ping) well
+  // within every watchdog_ms, e.g. from a timer, or the motor goes safe.
+  std::optional<int> watchdog_ms;
 };
 
 class Client {

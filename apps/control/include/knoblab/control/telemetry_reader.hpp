@@ -46,7 +46,9 @@ class TelemetryReader {
   std::uint64_t capacity() const noexcept { return mask_ + 1; }
   std::uint32_t decimation() const noexcept;
   double record_rate_hz() const noexcept;  // loop rate / decimation
-  bool writer_closed() const noexcept;     // the daemon shut this ring down
+  // The daemon shut this ring down; a restarted daemon creates a new one
+  // under the same name, so reopen by name to follow it.
+  bool writer_closed() const noexcept;
 
  private:
   bool copy(std::uint64_t sequence, TelemetryRecord& out) const noexcept;

@@ -14,13 +14,15 @@
 #include "knoblab/capture/capture_controller.hpp"
 #include "knoblab/capture/daq.hpp"
 #include "knoblab/capture/sample.hpp"
+#include "knoblab/hapticd/calibration_controller.hpp"
 #include "knoblab/hapticd/render_controller.hpp"
 #include "knoblab/hapticd/supervisor.hpp"
+#include "knoblab/rt/seqlock.hpp"
 #include "knoblab/rt/spsc_ring.hpp"
 
 namespace knoblab::hapticd {
 
-enum class Mode : std::uint8_t { Idle, Render, Capture };
+enum class Mode : std::uint8_t { Idle, Render, Capture, Calibrate };
 const char* to_string(Mode m);
 
 // Digital inputs as the loop sees them (already active-high logic).
@@ -34,12 +36,16 @@ struct LineInputs {
 // by the sender, not by the loop.
 struct CoreCommand {
   enum Kind : std::uint8_t { SetMode, StartCapture, StopCapture, SetRender, StartRecording,
-                             StopRecording, ClearFault, ForceSafe } kind = SetMode;
+                             StopRecording, ClearFault, ForceSafe, StartCalibration } kind = SetMode;
   Mode mode = Mode::Idle;
   bool immediate = false;
   RenderParams render{};
   capture::CaptureController capture{};
   std::int64_t capture_cycles = 0;
+  // StartCalibration: a prebuilt controller; it runs calibration.cycles()
+  // cycles (StopCapture ends it early), then the core is Idle again and
+  // last_calibration() holds what it accumulated.
+  CalibrationController calibration{};
   std::uint32_t faults = kFaultCommanded;  // ForceSafe: why (e.g. kFaultWatchdog)
 };
 
@@ -72,6 +78,10 @@ class HapticCore {
   // Non-realtime side. False when the queue is full (retry later).
   bool post(const CoreCommand& c) { return commands_.try_push(c); }
   CoreState state() const;
+  // The data of the most recently ended calibration run, and how many runs
+  // have ended so far (0: none yet; version changes when a new one ends).
+  CalibrationData last_calibration() const { return calibration_result_.read(); }
+  std::uint64_t calibrations_finished() const { return calibration_result_.version(); }
 
   // Realtime side: one cycle. `external_faults`: Fault bits that hold right
   // now according to other parts (e.g. the amplifier's Modbus status).
@@ -86,9 +96,13 @@ class HapticCore {
 
   CoreConfig cfg_;
   rt::SpscRing<CoreCommand, 16> commands_;
+  CoreCommand pop_slot_{};  // where the loop receives commands
   RenderController render_;
   capture::CaptureController capture_;
   std::int64_t capture_left_ = 0;
+  CalibrationController calibration_{};
+  std::int64_t calibration_left_ = 0;
+  rt::Seqlock<CalibrationData> calibration_result_{};
   Supervisor supervisor_;
   Mode mode_ = Mode::Idle;
   bool clear_requested_ = false;

@@ -59,6 +59,18 @@ class Daemon {
   bool start_capture(const capture::CaptureConfig& cfg, double seconds, const std::string& knob,
                      std::string& why);
   bool post(const CoreCommand& c);
+  // Starts a calibration run (kinds: see calibration_controller.hpp). The
+  // loop's rate, the sensor calibration in use and the torque-per-volt come
+  // from the daemon's config; the rest (durations, PID) from `cfg`. The run
+  // is recorded like a capture (no knob, metadata {"calibration": kind}).
+  // Returns false with a reason when it can't; on success `seconds` = how
+  // long the run takes.
+  bool start_calibration(const CalibrationConfig& cfg, double& seconds, std::string& why);
+  // The most recently ended calibration, fitted (nullopt: none has ended).
+  std::optional<CalibrationResult> last_calibration() const;
+  // Each ended calibration once (for the event publisher): nullopt when no
+  // new one has ended since the previous call.
+  std::optional<CalibrationResult> take_finished_calibration();
   // Clears latched faults whose cause is gone: first the amplifier's own
   // (over Modbus), then the supervisor's.
   bool clear_faults();
@@ -86,6 +98,7 @@ class Daemon {
   std::mutex finished_mutex_;
   std::vector<FinishedRecording> finished_;
   std::mutex command_mutex_;  // post() from several non-RT threads
+  std::atomic<std::uint64_t> calibrations_taken_{0};
 };
 
 }  // namespace knoblab::hapticd

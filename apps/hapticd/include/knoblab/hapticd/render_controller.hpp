@@ -8,12 +8,21 @@
 #include "knoblab/capture/calibration.hpp"
 #include "knoblab/capture/daq.hpp"
 #include "knoblab/capture/sample.hpp"
+#include "knoblab/hapticd/handoff.hpp"
 #include "knoblab/hapticd/param_ramp.hpp"
 #include "knoblab/hapticd/render_params.hpp"
 #include "knoblab/hapticd/virtual_mass.hpp"
 #include "knoblab/model/filters.hpp"
+#include "knoblab/model/tiles.hpp"
 
 namespace knoblab::hapticd {
+
+// Haptic Icon Prototyper behaviours (thesis Ch. 5): position tiles (Eq. 19)
+// and time tiles (Eq. 20, time counted from when the set starts rendering).
+struct TileSet {
+  std::vector<model::PositionTile> position;
+  std::vector<model::TimeTile> time;
+};
 
 struct RenderConfig {
   double rate_hz = 10000.0;
@@ -34,6 +43,11 @@ class RenderController {
   // Forget the motion history (entering render mode).
   void reset();
 
+  // Non-realtime: render these tiles on top of the model from the next
+  // cycle on (nullptr: none). False while the previous set is still being
+  // handed over; retry shortly.
+  bool load_tiles(std::unique_ptr<TileSet> tiles) { return tiles_.publish(std::move(tiles)); }
+
   void update(const capture::DaqInputs& in, capture::DaqOutputs& out, capture::Sample& s);
 
   // The model torque of the last cycle (sensor convention), for tests.
@@ -52,6 +66,11 @@ class RenderController {
   double prev_theta_ = 0.0;
   long long cycle_ = 0;
   double last_model_torque_ = 0.0;
+  Handoff<TileSet> tiles_;
+  const TileSet* active_tiles_ = nullptr;
+  double tiles_start_t_ = 0.0;
+  double prev_omega_ = 0.0;
+  model::BoxFilter3 alpha_box_;  // acceleration for f_acc tiles
 };
 
 }  // namespace knoblab::hapticd
