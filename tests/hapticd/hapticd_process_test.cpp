@@ -169,12 +169,22 @@ TEST(HapticdProcess, CaptureOverTheProtocolLandsInTheStore) {
   ASSERT_TRUE(ev) << d.log();
   EXPECT_EQ(ev->name, "capture_finished");
   EXPECT_EQ(ev->data.at("samples"), 10000);
+  // The open-loop torque stimulus, too.
+  c.call("start_capture", {{"seconds", 0.5},
+                           {"knob", "moderate-detents"},
+                           {"torque_sweep", {{"a", 2}, {"b", 10}, {"c", 0.02}, {"d", 2}}}});
+  const auto ev2 = c.wait_event(std::chrono::seconds(10));
+  ASSERT_TRUE(ev2) << d.log();
+  EXPECT_EQ(ev2->data.at("samples"), 5000);
   EXPECT_EQ(d.terminate(), 0) << d.log();
   store::Store s = store::Store::open(d.db());
   const auto caps = s.list_captures();
-  ASSERT_EQ(caps.size(), 1u);
+  ASSERT_EQ(caps.size(), 2u);
   EXPECT_EQ(caps[0].status, "complete");
   EXPECT_EQ(caps[0].sample_count, 10000);
+  EXPECT_NE(caps[0].stimulus.find("swept_sine"), std::string::npos);
+  EXPECT_NE(caps[1].stimulus.find("torque_sweep"), std::string::npos);
+  EXPECT_EQ(caps[1].sample_count, 5000);
 }
 
 }  // namespace

@@ -96,13 +96,18 @@ Reply ControlHandler::render(const json& a, bool partial) {
 }
 
 Reply ControlHandler::start_capture(const json& a) {
-  if (a.contains("torque_sweep"))
-    return Reply::failure(ErrorCode::bad_args, "torque-stimulus capture is not available in this build",
-                          "torque_sweep");
   capture::CaptureConfig cc;
-  const json& s = a.at("swept_sine");
-  cc.stimulus = {s.at("a").get<double>(), s.at("b").get<double>(), s.at("c").get<double>(),
-                 s.at("d").get<double>()};
+  if (a.contains("torque_sweep")) {  // open-loop torque chirp (schema: exactly one stimulus)
+    const json& s = a.at("torque_sweep");
+    cc.kind = capture::CaptureConfig::Stimulus::Torque;
+    cc.torque_stimulus = {s.at("a").get<double>(), s.at("b").get<double>(), s.at("c").get<double>(),
+                          s.at("d").get<double>()};
+    cc.torque_per_volt = daemon_.config().core.limits.torque_per_volt;
+  } else {
+    const json& s = a.at("swept_sine");
+    cc.stimulus = {s.at("a").get<double>(), s.at("b").get<double>(), s.at("c").get<double>(),
+                   s.at("d").get<double>()};
+  }
   if (a.contains("pid")) {
     const json& pid = a.at("pid");
     cc.pid.Kp = get(pid, "Kp", cc.pid.Kp);

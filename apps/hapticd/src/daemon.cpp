@@ -118,7 +118,12 @@ bool Daemon::start_capture(const capture::CaptureConfig& cc, double seconds, con
   store::NewCapture info;
   info.knob = knob.empty() ? cfg_.knob : knob;
   info.rate_hz = cfg_.core.rate_hz;
-  info.calibration = cc.calibration.to_json();
+  info.calibration = cfg_.core.calibration.to_json();
+  const bool torque = cc.kind == capture::CaptureConfig::Stimulus::Torque;
+  const model::ChirpPhase ch = torque ? cc.torque_stimulus.chirp() : cc.stimulus.chirp();
+  info.stimulus = nlohmann::json{{"kind", torque ? "torque_sweep" : "swept_sine"}, {"equation", 8},
+                                 {"a", ch.a}, {"b", ch.b}, {"c", torque ? cc.torque_stimulus.amplitude_Nm : cc.stimulus.c},
+                                 {"d", ch.d}}.dump();
   info.source = "hapticd";
   recorder_->describe_next(info);
   CoreCommand c;
