@@ -95,10 +95,4 @@ std::vector<FinishedRecording> Recorder::take_finished() {
   return out;
 }
 
-std::optional<std::int64_t> Recorder::open_capture_id() const {
-  std::lock_guard lock(bio_mutex_);
-  if (open_capture_ == 0) return std::nullopt;
-  return open_capture_;
-}
-
 }  // namespace knoblab::hapticd

@@ -76,7 +76,6 @@ void RenderController::update(const capture::DaqInputs& in, capture::DaqOutputs&
     const model::Kinematics<double> kt{s.theta, s.omega, alpha_est};
     tau += model::total_torque(tiles->position, kt) + model::total_torque(tiles->time, s.t - tiles_start_t_, kt);
   }
-  last_model_torque_ = tau;
 
   // The knob resists with τ, so the motor pushes with −τ.
   s.command = -tau / cfg_.torque_per_volt;

@@ -36,7 +36,6 @@ class CaptureController {
   void update(const DaqInputs& in, DaqOutputs& out, Sample& sample);
 
   const CaptureConfig& config() const { return cfg_; }
-  double elapsed_s() const { return static_cast<double>(cycle_) / cfg_.rate_hz; }
 
  private:
   CaptureConfig cfg_;

@@ -45,7 +45,6 @@ class Recorder {
 
   // Recordings that ended since the last call.
   std::vector<FinishedRecording> take_finished();
-  std::optional<std::int64_t> open_capture_id() const;
 
  private:
   void open(std::uint32_t recording_id);

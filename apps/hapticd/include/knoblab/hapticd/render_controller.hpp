@@ -50,9 +50,6 @@ class RenderController {
 
   void update(const capture::DaqInputs& in, capture::DaqOutputs& out, capture::Sample& s);
 
-  // The model torque of the last cycle (sensor convention), for tests.
-  double last_model_torque() const { return last_model_torque_; }
-
  private:
   RenderConfig cfg_;
   double dt_;
@@ -65,7 +62,6 @@ class RenderController {
   bool have_prev_ = false;
   double prev_theta_ = 0.0;
   long long cycle_ = 0;
-  double last_model_torque_ = 0.0;
   Handoff<TileSet> tiles_;
   const TileSet* active_tiles_ = nullptr;
   double tiles_start_t_ = 0.0;
