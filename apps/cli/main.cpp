@@ -12,7 +12,8 @@ namespace knoblab::cli {
 const std::vector<Command>& commands() {
   static const std::vector<Command> all = {
       {kSimulateSpec, run_simulate}, {kImportSpec, run_import}, {kExportSpec, run_export},
-      {kListSpec, run_list},         {kInspectSpec, run_inspect}, {kDemoSpec, run_demo},
+      {kListSpec, run_list},         {kInspectSpec, run_inspect}, {kFitSpec, run_fit},
+      {kFitsSpec, run_fits},         {kFitExportSpec, run_fit_export}, {kDemoSpec, run_demo},
   };
   return all;
 }
@@ -22,7 +23,7 @@ void print_overview() {
   std::cout << "usage: knoblab COMMAND [OPTIONS]\n\ncommands:\n";
   for (const auto& c : commands()) {
     std::string name = "  " + c.spec.name;
-    name.resize(12, ' ');
+    name.resize(14, ' ');
     std::cout << name << c.spec.summary.substr(0, c.spec.summary.find('\n')) << "\n";
   }
   std::cout << "\n'knoblab COMMAND --help' describes one command.\n";

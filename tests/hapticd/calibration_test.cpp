@@ -1,5 +1,6 @@
-// Calibrate mode: the fits (Table 4, Eq. 12, Eq. 2) on synthetic data, and
-// the runs end to end on the simulated camera through HapticCore.
+// Calibrate mode: the controller's reference, and the runs end to end on the
+// simulated camera through HapticCore and the daemon. The fits themselves
+// (Table 4, Eq. 12, Eq. 2) on synthetic data: tests/fit/calibration_test.cpp.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,13 +11,10 @@
 #include <filesystem>
 #include <thread>
 #include <numbers>
-#include <random>
 #include <type_traits>
-#include <vector>
 
 #include "knoblab/capture/sim_daq.hpp"
 #include "knoblab/hapticd/calibration_controller.hpp"
-#include "knoblab/hapticd/calibration_fit.hpp"
 #include "knoblab/hapticd/core.hpp"
 #include "knoblab/hapticd/daemon.hpp"
 #include "knoblab/hal/memory_lines.hpp"
@@ -33,102 +31,6 @@ static_assert(std::is_trivially_copyable_v<CalibrationData>);
 static_assert(std::is_trivially_copyable_v<CoreCommand>);
 
 double wrap(double a) { return std::remainder(a, 2.0 * kPi); }
-
-// ---- fits on synthetic data ----
-
-TEST(CalibrationFit, ErrorStatsOfAKnownOffsetAndNoise) {
-  std::mt19937_64 rng(7);
-  std::normal_distribution<double> noise(0.0, 0.0018);
-  std::vector<double> cmd, meas;
-  for (int i = 0; i < 25000; ++i) {
-    const double c = 0.1 * std::sin(1e-3 * i);
-    cmd.push_back(c);
-    meas.push_back(c - 0.0010 + noise(rng));  // commanded − measured = 1 mN·m ± 1.8
-  }
-  const ErrorStats s = error_stats(cmd, meas);
-  EXPECT_EQ(s.n, 25000);
-  EXPECT_NEAR(s.mean, 0.0010, 3e-5);
-  EXPECT_NEAR(s.sd, 0.0018, 4e-5);
-}
-
-TEST(CalibrationFit, TooLittleDataIsAClearError) {
-  const std::vector<double> one{1.0};
-  EXPECT_THROW(error_stats(one, one), FitError);
-  const std::vector<double> two{1.0, 2.0};
-  EXPECT_THROW(fit_accel_gain(two, two), FitError);
-  EXPECT_THROW(fit_gravity(two, two, two, two), FitError);
-  GravityAccumulator only_cw;
-  for (int i = 0; i < 100; ++i) only_cw.add(0.06 * i, std::sin(0.06 * i), false);
-  try {
-    (void)only_cw.fit();
-    FAIL() << "a one-direction gravity fit must not succeed";
-  } catch (const FitError& e) {
-    EXPECT_NE(std::string(e.what()).find("each direction"), std::string::npos) << e.what();
-  }
-  // Constant angle: sin, cos and 1 are collinear — singular, not garbage.
-  const std::vector<double> th(50, 0.3), y(50, 1.0);
-  EXPECT_THROW(fit_gravity(th, y, th, y), FitError);
-}
-
-TEST(CalibrationFit, RecoversAccelGainWithNoise) {
-  // Eq. 12: α_true = C_cal·V; V carries the motion, α_true (commanded) is
-  // what we regress on. Noise as the simulated ADXL202 (σ 8.7 rad/s²).
-  std::mt19937_64 rng(3);
-  std::normal_distribution<double> noise(0.0, 8.7);
-  const double C = 1148.0;
-  std::vector<double> v, a, th;
-  for (int i = 0; i < 50000; ++i) {
-    const double t = i * 1e-4;
-    const double alpha = 40.0 * std::sin(2 * kPi * 2.0 * t) * (1.0 + t);
-    const double theta = 0.8 * std::sin(2 * kPi * 0.7 * t);
-    const double grav = 300.0 * std::sin(theta + 0.4) + 5.0;  // not compensated
-    v.push_back((alpha + grav + noise(rng)) / C);
-    a.push_back(alpha);
-    th.push_back(theta);
-  }
-  const AccelGainFit f = fit_accel_gain(v, a, th);
-  EXPECT_TRUE(f.with_gravity);
-  EXPECT_NEAR(f.C_cal, C, 3.0 * f.C_cal_se + 1e-9);
-  EXPECT_LT(f.C_cal_se, 0.01 * C);
-  EXPECT_NEAR(f.residual_sd, 8.7, 0.3);
-  EXPECT_NEAR(f.grav_A, 300.0, 3.0);
-  EXPECT_NEAR(f.grav_C, 0.4, 0.02);
-  EXPECT_NEAR(f.grav_D, 5.0, 1.0);
-
-  // Without gravity in the signal, the plain Eq. 12 (no intercept) fit.
-  std::vector<double> v2;
-  for (std::size_t i = 0; i < a.size(); ++i) v2.push_back((a[i] + noise(rng)) / C);
-  const AccelGainFit p = fit_accel_gain(v2, a);
-  EXPECT_FALSE(p.with_gravity);
-  EXPECT_NEAR(p.C_cal, C, 0.01 * C);
-  EXPECT_GT(p.C_cal_se, 0.0);
-}
-
-TEST(CalibrationFit, RecoversGravityAndAveragingCancelsLag) {
-  std::mt19937_64 rng(11);
-  std::normal_distribution<double> noise(0.0, 8.7);
-  const double A = 327.0, C = -1.1, D = 12.0, lag = 0.05;  // rad of phase lag
-  std::vector<double> th1, y1, th2, y2;
-  for (int i = 0; i < 40000; ++i) {
-    const double th = 0.3 + 2 * kPi * i / 40000.0;
-    th1.push_back(th);  // θ increasing: the sensor reports the angle lag earlier
-    y1.push_back(A * std::sin(th - lag + C) + D + noise(rng));
-    const double thb = 0.3 + 2 * kPi - 2 * kPi * i / 40000.0;
-    th2.push_back(thb);
-    y2.push_back(A * std::sin(thb + lag + C) + D + noise(rng));
-  }
-  const GravityFit g = fit_gravity(th1, y1, th2, y2);
-  EXPECT_NEAR(g.cw.C, C - lag, 0.005);   // each direction alone is biased …
-  EXPECT_NEAR(g.ccw.C, C + lag, 0.005);
-  EXPECT_NEAR(g.C, C, 0.005);            // … the average is not
-  EXPECT_NEAR(g.A, A * std::cos(lag), 1.0);
-  EXPECT_NEAR(g.D, D, 0.3);
-  EXPECT_DOUBLE_EQ(g.B, 1.0);
-  // A negative-amplitude convention never comes out: A ≥ 0, C wrapped.
-  const GravityDirectionFit n = gravity_from_coefficients(-3.0, 0.0, 0.0);
-  EXPECT_DOUBLE_EQ(n.A, 3.0);
-  EXPECT_NEAR(std::abs(n.C), kPi, 1e-12);
-}
 
 TEST(CalibrationController, GravityReferenceIsOneRevolutionEachWayAndReturns) {
   CalibrationConfig cc;
@@ -193,7 +95,7 @@ CalRun run_calibration(capture::SimDaq& daq, CalibrationConfig cc, const capture
   return r;
 }
 
-void print(const char* what, const Table4& t) {
+void print(const char* what, const fit::Table4& t) {
   std::printf("%s: theta %.3g/%.3g rad, omega %.3g/%.3g rad/s, alpha %.3g/%.3g rad/s^2, torque %.3g/%.3g N.m "
               "(mean/SD of commanded - measured)\n",
               what, t.theta.mean, t.theta.sd, t.omega.mean, t.omega.sd, t.alpha.mean, t.alpha.sd, t.torque.mean,
@@ -221,14 +123,22 @@ TEST(CalibrationRun, GravityOnATiltedTripodRecoversTheTrueCompensation) {
   ASSERT_TRUE(r.result.gravity);
   EXPECT_TRUE(r.ended_idle);
   EXPECT_EQ(r.calibrate_cycles, 110000);
-  const GravityFit& g = *r.result.gravity;
-  std::printf("gravity: fit A=%.3f C=%.4f D=%.3f (cw A=%.3f C=%.4f, ccw A=%.3f C=%.4f); truth A=%.3f C=%.4f D=%.3f\n",
-              g.A, g.C, g.D, g.cw.A, g.cw.C, g.ccw.A, g.ccw.C, truth.A, truth.C, truth.D);
+  const fit::GravityFit& g = *r.result.gravity;
+  std::printf("gravity: fit A=%.3f+-%.3f C=%.4f+-%.4f D=%.3f+-%.3f (95%%; cw A=%.3f C=%.4f, ccw A=%.3f C=%.4f); "
+              "truth A=%.3f C=%.4f D=%.3f\n",
+              g.A, g.A_ci95, g.C, g.C_ci95, g.D, g.D_ci95, g.cw.A, g.cw.C, g.ccw.A, g.ccw.C, truth.A, truth.C,
+              truth.D);
   ASSERT_GT(truth.A, 100.0);
   EXPECT_NEAR(g.A, truth.A, 0.02 * truth.A);
   EXPECT_NEAR(wrap(g.C - truth.C), 0.0, 0.02);
   EXPECT_NEAR(g.D, truth.D, 0.02 * truth.A);
   EXPECT_NEAR(r.result.updated.grav_A, g.A, 0.0);
+  // The intervals: A and D from two directions (1 dof), C from the regressions.
+  EXPECT_NEAR(g.A_ci95, 12.7062 * g.A_se, 1e-4 * g.A_se + 1e-12);
+  EXPECT_NEAR(g.D_ci95, 12.7062 * g.D_se, 1e-4 * g.D_se + 1e-12);
+  EXPECT_GT(g.C_se, 0.0);
+  EXPECT_GT(g.C_dof, 1000.0);
+  EXPECT_NEAR(g.C_ci95, 1.96 * g.C_se, 0.01 * g.C_se);
 }
 
 sim::PlantConfig free_shaft() {
@@ -248,7 +158,7 @@ TEST(CalibrationRun, SpatialOnAFreeShaftTracksLikeTable4) {
   ASSERT_TRUE(r.result.ok()) << r.result.error;
   EXPECT_EQ(r.calibrate_cycles, 50000);  // 5 s, thesis §2.2.1
   EXPECT_GT(r.max_abs_command_V, 0.01);  // it did move
-  const Table4& t = r.result.table4;
+  const fit::Table4& t = r.result.table4;
   print("spatial (Load::Free)", t);
   // Table 4: θ 1.2 ± 3.2 mrad, ω 1.6 ± 24 mrad/s, α 0.66 ± 0.42 rad/s².
   EXPECT_EQ(t.theta.n, 50000);
@@ -260,6 +170,7 @@ TEST(CalibrationRun, SpatialOnAFreeShaftTracksLikeTable4) {
   EXPECT_LT(std::abs(t.alpha.mean), 1.0);
   EXPECT_LT(t.alpha.sd, 15.0);
   EXPECT_EQ(t.torque.n, 0);
+  EXPECT_NEAR(t.theta.mean_ci95, 1.96 * t.theta.sd / std::sqrt(50000.0), 1e-3 * t.theta.sd);
   EXPECT_FALSE(r.result.accel);
 }
 
@@ -273,12 +184,15 @@ TEST(CalibrationRun, AccelGainRecoversCcalFromTheSpatialSweep) {
   const CalRun r = run_calibration(daq, cc, in_use);
   ASSERT_TRUE(r.result.ok()) << r.result.error;
   ASSERT_TRUE(r.result.accel);
-  const AccelGainFit& a = *r.result.accel;
-  std::printf("accel_gain: C_cal=%.1f +- %.1f (truth %.1f), residual %.2f rad/s^2, gravity seen A=%.1f (truth %.1f)\n",
-              a.C_cal, a.C_cal_se, true_C, a.residual_sd, a.grav_A, daq.plant().accel_calibration().A);
+  const fit::AccelGainFit& a = *r.result.accel;
+  std::printf("accel_gain: C_cal=%.1f +- %.1f (95%%; se %.1f, truth %.1f), residual %.2f rad/s^2, gravity seen A=%.1f "
+              "(truth %.1f)\n",
+              a.C_cal, a.C_cal_ci95, a.C_cal_se, true_C, a.residual_sd, a.grav_A, daq.plant().accel_calibration().A);
   EXPECT_NEAR(a.C_cal, true_C, 0.03 * true_C);
   EXPECT_LT(a.C_cal_se, 0.03 * true_C);
   EXPECT_DOUBLE_EQ(r.result.updated.C_cal, a.C_cal);
+  EXPECT_EQ(a.dof, a.n - 4);  // C_cal and the three gravity terms
+  EXPECT_NEAR(a.C_cal_ci95, 1.96 * a.C_cal_se, 0.01 * a.C_cal_se);
 }
 
 TEST(CalibrationRun, TorqueWithTheGripperAnchored) {
@@ -289,7 +203,7 @@ TEST(CalibrationRun, TorqueWithTheGripperAnchored) {
   cc.kind = CalibrationKind::Torque;
   const CalRun r = run_calibration(daq, cc, daq.calibration());
   ASSERT_TRUE(r.result.ok()) << r.result.error;
-  const Table4& t = r.result.table4;
+  const fit::Table4& t = r.result.table4;
   print("torque (Load::Anchored)", t);
   EXPECT_GT(t.torque.n, 49000);
   EXPECT_GT(r.max_abs_command_V, 5.0);  // it did push

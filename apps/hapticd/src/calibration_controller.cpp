@@ -5,6 +5,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "knoblab/fit/fit_data.hpp"
 #include "knoblab/interchange/sample.hpp"
 
 namespace knoblab::hapticd {
@@ -173,7 +174,7 @@ CalibrationResult evaluate(const CalibrationData& d) {
   r.fault = (d.flags_seen & interchange::kFaultLatched) != 0;
   r.torque_limited = (d.flags_seen & interchange::kTorqueLimited) != 0;
   r.updated = d.calibration;
-  auto stats = [](const RunningStats& s) { return s.count() >= 2 ? s.stats() : ErrorStats{}; };
+  auto stats = [](const fit::RunningStats& s) { return s.count() >= 2 ? s.stats() : fit::ErrorStats{}; };
   r.table4 = {stats(d.theta), stats(d.omega), stats(d.alpha), stats(d.torque)};
   try {
     if (d.kind == CalibrationKind::AccelGain) {
@@ -186,10 +187,10 @@ CalibrationResult evaluate(const CalibrationData& d) {
       r.updated.grav_C = r.gravity->C;
       r.updated.grav_D = r.gravity->D;
     } else {
-      const ErrorStats& first = d.kind == CalibrationKind::Torque ? r.table4.torque : r.table4.theta;
-      if (first.n < 2) throw FitError("the run recorded too few samples for statistics");
+      const fit::ErrorStats& first = d.kind == CalibrationKind::Torque ? r.table4.torque : r.table4.theta;
+      if (first.n < 2) throw fit::FitDataError("the run recorded too few samples for statistics");
     }
-  } catch (const FitError& e) {
+  } catch (const fit::FitDataError& e) {
     r.error = e.what();
   }
   if (r.error.empty() && !r.complete) r.error = "the run was stopped before it finished";

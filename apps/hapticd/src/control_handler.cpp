@@ -26,7 +26,9 @@ double get(const json& args, const char* key, double fallback) {
   return args.contains(key) ? args.at(key).get<double>() : fallback;
 }
 
-json stats_json(const ErrorStats& s) { return {{"n", s.n}, {"mean", s.mean}, {"sd", s.sd}}; }
+json stats_json(const fit::ErrorStats& s) {
+  return {{"n", s.n}, {"mean", s.mean}, {"sd", s.sd}, {"mean_ci95", s.mean_ci95}};
+}
 
 // The event payload of a finished calibration (and get_state's copy).
 json calibration_json(const CalibrationResult& r) {
@@ -45,10 +47,13 @@ json calibration_json(const CalibrationResult& r) {
   j["table4"] = t4;
   if (r.accel)
     j["accel_gain"] = {{"C_cal", r.accel->C_cal}, {"C_cal_se", r.accel->C_cal_se},
-                       {"residual_sd", r.accel->residual_sd}, {"n", r.accel->n}};
+                       {"C_cal_ci95", r.accel->C_cal_ci95}, {"residual_sd", r.accel->residual_sd},
+                       {"n", r.accel->n}, {"dof", r.accel->dof}};
   if (r.gravity)
     j["gravity"] = {{"A", r.gravity->A}, {"B", r.gravity->B}, {"C", r.gravity->C}, {"D", r.gravity->D},
-                    {"A_se", r.gravity->A_se}, {"D_se", r.gravity->D_se},
+                    {"A_se", r.gravity->A_se}, {"D_se", r.gravity->D_se}, {"C_se", r.gravity->C_se},
+                    {"A_ci95", r.gravity->A_ci95}, {"D_ci95", r.gravity->D_ci95},
+                    {"C_ci95", r.gravity->C_ci95},
                     {"cw", {{"A", r.gravity->cw.A}, {"C", r.gravity->cw.C}, {"D", r.gravity->cw.D}}},
                     {"ccw", {{"A", r.gravity->ccw.A}, {"C", r.gravity->ccw.C}, {"D", r.gravity->ccw.D}}}};
   j["calibration"] = json::parse(r.updated.to_json());  // the constants with the fit applied
@@ -71,8 +76,8 @@ json ControlHandler::state_json() const {
   return j;
 }
 
-Reply ControlHandler::render(const json& a, bool partial) {
-  RenderParams p = partial ? params_ : RenderParams{};
+RenderParams render_params_from_args(const json& a, RenderParams base, bool partial) {
+  RenderParams p = partial ? base : RenderParams{};
   p.M_acc = get(a, "M_acc", p.M_acc);
   p.B_vel = get(a, "B_vel", p.B_vel);
   p.A_pos = get(a, "A_pos", p.A_pos);
@@ -87,6 +92,11 @@ Reply ControlHandler::render(const json& a, bool partial) {
   }
   p.K_vm = get(a, "K_vm", p.K_vm);
   p.B_vm = get(a, "B_vm", p.B_vm);
+  return p;
+}
+
+Reply ControlHandler::render(const json& a, bool partial) {
+  const RenderParams p = render_params_from_args(a, params_, partial);
   CoreCommand c;
   c.kind = CoreCommand::SetRender;
   c.render = p;

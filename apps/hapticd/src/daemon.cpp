@@ -78,8 +78,15 @@ Daemon::Daemon(DaemonConfig cfg, std::unique_ptr<capture::Daq> daq, std::unique_
     };
     poller_ = std::make_unique<modbus::Poller>(std::move(pc));
   }
+  if (cfg_.initial_model) {
+    CoreCommand c;
+    c.kind = CoreCommand::SetRender;
+    c.immediate = true;
+    c.render = *cfg_.initial_model;
+    post(c);
+  }
   if (!cfg_.socket_path.empty()) {
-    impl_->handler = std::make_unique<ControlHandler>(*this);
+    impl_->handler = std::make_unique<ControlHandler>(*this, cfg_.initial_model.value_or(RenderParams{}));
     control::ServerConfig sc;
     sc.socket_path = cfg_.socket_path;
     sc.socket_group = cfg_.socket_group;

@@ -15,6 +15,8 @@
 #include "knoblab/capture/sim_daq.hpp"
 #include "knoblab/hal/factory.hpp"
 #include "knoblab/hal/memory_lines.hpp"
+#include "knoblab/control/schema.hpp"
+#include "knoblab/hapticd/control_handler.hpp"
 #include "knoblab/hapticd/daemon.hpp"
 #include "knoblab/rt/stats_json.hpp"
 #include "knoblab/rt/timing_stats.hpp"
@@ -43,6 +45,7 @@ const char* kUsage =
     "  --telemetry NAME     shared-memory telemetry ring, e.g. /knoblab-telemetry\n"
     "  --modbus HOST:PORT   amplifier + biometrics box over Modbus TCP\n"
     "  --cycles N           stop after N cycles\n"
+    "  --model FILE         render model to load at start (knoblab fit --render-model)\n"
     "  --free-run           run cycles back to back (benchmark); renders a model with\n"
     "                       detents, damping and virtual-mass inertia\n"
     "  --stats-json FILE    write the loop's timing figures as JSON at exit\n";
@@ -57,6 +60,26 @@ struct Options {
 std::string need(const std::vector<std::string>& a, std::size_t& i) {
   if (i + 1 >= a.size()) throw std::invalid_argument(a[i] + " needs a value");
   return a[++i];
+}
+
+// A render model file (`knoblab fit --render-model`): {"model": "render4",
+// "params": {…}} where params are load_model's arguments, checked by the
+// same protocol schema a client's load_model is.
+knoblab::hapticd::RenderParams read_model_file(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) throw std::invalid_argument("--model: cannot read " + path);
+  json j;
+  try {
+    j = json::parse(f);
+  } catch (const json::parse_error& e) {
+    throw std::invalid_argument("--model " + path + ": not JSON: " + e.what());
+  }
+  if (!j.is_object() || j.value("model", "") != "render4" || !j.contains("params"))
+    throw std::invalid_argument("--model " + path + ": expected {\"model\": \"render4\", \"params\": {...}}");
+  const auto& spec = knoblab::control::command_spec(knoblab::control::Command::load_model);
+  if (auto problem = knoblab::control::validate_args(j["params"], spec.args))
+    throw std::invalid_argument("--model " + path + ": params." + problem->key + " " + problem->problem);
+  return knoblab::hapticd::render_params_from_args(j["params"], {}, false);
 }
 
 Options parse(const std::vector<std::string>& a) {
@@ -107,6 +130,8 @@ Options parse(const std::vector<std::string>& a) {
       o.cfg.modbus = pc;
     } else if (k == "--cycles") {
       o.cfg.loop.max_cycles = std::stoll(need(a, i));
+    } else if (k == "--model") {
+      o.cfg.initial_model = read_model_file(need(a, i));
     } else if (k == "--free-run") {
       o.cfg.loop.free_run = true;
     } else if (k == "--stats-json") {

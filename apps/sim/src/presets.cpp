@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace knoblab::sim::presets {
@@ -11,21 +12,50 @@ namespace {
 constexpr double kMilli = 1e-3;
 constexpr double kPi = std::numbers::pi;
 
-// One Table 7 column, as printed (mN·m units; signs as printed).
-struct Table7 {
-  double M, C_neg, B_neg, C_pos, B_pos, D_neg, D_pos, dv, A, P, S;
+constexpr double kBlank = std::numeric_limits<double>::quiet_NaN();
+
+// Table 7 as printed. Set 2 has no D or Δv (estimated once, by eye), and the
+// knobs without detents have no A, P, S.
+struct Table7Row {
+  std::string_view id;
+  Table7Column set1, set2;
+};
+constexpr Table7Row kTable7[] = {
+    {"high-friction",
+     {0.069, -50, -1.8, 50, 7.5, -150, 150, 0.040, kBlank, kBlank, kBlank, 0.26},
+     {0.091, -42, -3.5, 42, 1.5, kBlank, kBlank, kBlank, kBlank, kBlank, kBlank, 0.35}},
+    {"high-inertia",
+     {0.28, -3.8, -0.56, 3.8, 0.47, -17, 17, 0.015, kBlank, kBlank, kBlank, 0.18},
+     {0.27, -13, -0.37, 13, 0.61, kBlank, kBlank, kBlank, kBlank, kBlank, kBlank, 0.20}},
+    {"subtle-detents",
+     {0.034, -2.2, -0.16, 2.2, 0.25, -10, 10, 0.010, 1.2, 0.076, 0.00046, 0.098},
+     {0.035, -2.3, -0.14, 2.3, 0.23, kBlank, kBlank, kBlank, 0.97, 0.076, 0.17, 0.084}},
+    {"moderate-detents",
+     {0.049, -1.1, -0.48, 1.1, 0.56, -20, 20, 0.010, -11, 0.034, -0.19, 0.073},
+     {0.048, -0.12, -0.62, 0.12, -0.0062, kBlank, kBlank, kBlank, -11, 0.035, -0.22, 0.072}},
+    {"non-sine-detents",
+     {-0.0048, -35, -6.4, 35, 6.7, -200, 200, 0.015, -202, 0.16, -0.16, 3.3},
+     {0.0085, -3.5, -2.9, 3.5, 1.4, kBlank, kBlank, kBlank, -61, 0.041, -1.9, 5.1}},
 };
 
-KnobParams thesis_knob(const Table7& t) {
+// Set 1 as a simulated knob; P comes from the gold-standard detent count
+// (see presets.hpp), blanks are zero.
+KnobParams thesis_knob(const Table7Column& t, double detents_per_rev) {
   KnobParams k;
   k.inertia.M = std::abs(t.M) * kMilli;
   k.friction = {std::abs(t.C_neg) * kMilli, std::abs(t.B_neg) * kMilli, std::abs(t.C_pos) * kMilli,
                 std::abs(t.B_pos) * kMilli};
   k.stick = {t.dv, std::abs(t.D_neg) * kMilli, std::abs(t.D_pos) * kMilli};
-  k.detents.A = t.A * kMilli;
-  k.detents.P = t.P;
-  k.detents.S = t.S;
+  if (detents_per_rev > 0) {
+    k.detents.A = t.A * kMilli;
+    k.detents.P = 1.0 / detents_per_rev;
+    k.detents.S = t.S;
+  }
   return k;
+}
+
+KnobParams thesis_knob(std::string_view id, double detents_per_rev) {
+  return thesis_knob(*table7(id, 1), detents_per_rev);
 }
 
 // One Table 19/20 row: b in mN·m/(rad/s), m in mN·m/(rad/s²), a1 in mN·m,
@@ -41,7 +71,9 @@ KnobParams study_knob(double b, double m, double a1, double a2) {
 
 KnobParams non_sine() {
   // Set 1, with the caps and sign handling documented in presets.hpp.
-  KnobParams k = thesis_knob({-0.0048, -35, -6.4, 35, 6.7, -90, 90, 0.015, 61, 1.0 / 12, -0.16 + kPi});
+  Table7Column t = *table7("non-sine-detents", 1);
+  t.D_neg = -90, t.D_pos = 90, t.A = 61, t.S = -0.16 + kPi;
+  KnobParams k = thesis_knob(t, 12);
   k.detents.harmonics = 3;
   k.detents.a[2] = 0.10 * k.detents.A;  // skew: steeper on one side
   k.detents.a[3] = 0.20 * k.detents.A;  // flat tops: wide detents
@@ -51,13 +83,13 @@ KnobParams non_sine() {
 std::array<Preset, 19> build() {
   return {{
       {"high-friction", "Table 5/7: 1960s AM/FM radio volume knob; moderate friction, low inertia",
-       thesis_knob({0.069, -50, -1.8, 50, 7.5, -150, 150, 0.040, 0, 1, 0})},
+       thesis_knob("high-friction", 0)},
       {"high-inertia", "Table 5/7: 1960s AM/FM radio tuning knob; low friction, high inertia",
-       thesis_knob({0.28, -3.8, -0.56, 3.8, 0.47, -17, 17, 0.015, 0, 1, 0})},
+       thesis_knob("high-inertia", 0)},
       {"subtle-detents", "Table 5/7: 2004 Mazda 626 volume knob; 30 very subtle detents/rev",
-       thesis_knob({0.034, -2.2, -0.16, 2.2, 0.25, -10, 10, 0.010, 1.2, 1.0 / 30, 0.00046})},
+       thesis_knob("subtle-detents", 30)},
       {"moderate-detents", "Table 5/7: 1970s amplifier source selector; 12 moderate detents/rev",
-       thesis_knob({0.049, -1.1, -0.48, 1.1, 0.56, -20, 20, 0.010, -11, 1.0 / 12, -0.19})},
+       thesis_knob("moderate-detents", 12)},
       {"non-sine-detents",
        "Table 5/7: 2004 Mazda 626 fan knob; 12 wide non-sinusoidal detents/rev (capped)", non_sine()},
       {"study2-not-rendered", "Table 19 #1: no force feedback (control)", study_knob(0, 0, 0, 0)},
@@ -90,6 +122,13 @@ std::array<Preset, 19> build() {
 }
 
 }  // namespace
+
+const Table7Column* table7(std::string_view id, int set) {
+  for (const Table7Row& row : kTable7) {
+    if (row.id == id) return set == 1 ? &row.set1 : set == 2 ? &row.set2 : nullptr;
+  }
+  return nullptr;
+}
 
 std::span<const Preset> all() {
   static const std::array<Preset, 19> table = build();

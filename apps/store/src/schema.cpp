@@ -79,6 +79,19 @@ CREATE TABLE biometrics (
   PRIMARY KEY (capture_id, seq)
 ) WITHOUT ROWID;
 )sql",
+    // 4: a fit's report files (plots, fit.json, render model), stored with the
+    // fit row in one transaction. A name is one plain file name, since export
+    // writes it into a directory. A rowid table: rows hold whole files, too
+    // big for WITHOUT ROWID; the UNIQUE index serves the cascade from fits.
+    R"sql(
+CREATE TABLE fit_files (
+  fit_id INTEGER NOT NULL REFERENCES fits(id) ON DELETE CASCADE,
+  name   TEXT NOT NULL CHECK (length(name) > 0 AND instr(name, '/') = 0
+                             AND name NOT IN ('.', '..')),
+  bytes  BLOB NOT NULL CHECK (typeof(bytes) = 'blob'),
+  UNIQUE (fit_id, name)
+);
+)sql",
 };
 
 #undef KNOBLAB_NOW

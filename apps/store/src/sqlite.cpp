@@ -125,6 +125,15 @@ Statement& Statement::bind_text(int index, std::string_view value) {
   return *this;
 }
 
+Statement& Statement::bind_blob(int index, std::span<const std::uint8_t> bytes) {
+  // A null pointer would bind NULL; an empty span may well have one.
+  static constexpr std::uint8_t kEmpty = 0;
+  const void* data = bytes.empty() ? &kEmpty : bytes.data();
+  const int rc = sqlite3_bind_blob64(stmt_, index, data, bytes.size(), SQLITE_TRANSIENT);
+  if (rc != SQLITE_OK) fail(rc);
+  return *this;
+}
+
 Statement& Statement::bind_null(int index) {
   if (const int rc = sqlite3_bind_null(stmt_, index); rc != SQLITE_OK) fail(rc);
   return *this;
@@ -171,6 +180,14 @@ std::string Statement::column_text(int column) const {
   if (!text) return {};
   return std::string(reinterpret_cast<const char*>(text),
                      static_cast<std::size_t>(sqlite3_column_bytes(stmt_, column)));
+}
+
+std::vector<std::uint8_t> Statement::column_blob(int column) const {
+  // Pointer first, then size (sqlite's documented order); empty = null pointer.
+  const auto* data = static_cast<const std::uint8_t*>(sqlite3_column_blob(stmt_, column));
+  const auto size = static_cast<std::size_t>(sqlite3_column_bytes(stmt_, column));
+  if (!data) return {};
+  return std::vector<std::uint8_t>(data, data + size);
 }
 
 // ---- Transaction ----------------------------------------------------------

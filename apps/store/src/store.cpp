@@ -1,4 +1,4 @@
-// Opening (pragmas, migrations), knobs, capture rows, fits.
+// Opening (pragmas, migrations), knobs, capture rows, biometrics.
 #include "knoblab/store/store.hpp"
 
 #include <sqlite3.h>
@@ -147,18 +147,7 @@ void Store::delete_capture(std::int64_t id) {
   tx.commit();
 }
 
-// ---- fits -----------------------------------------------------------------
-
-std::int64_t Store::insert_fit(std::int64_t capture_id, std::string_view model,
-                               std::string_view params_json, std::string_view result_json) {
-  db_->prepare("INSERT INTO fits (capture_id, model, params, result) VALUES (?1, ?2, ?3, ?4)")
-      .bind_int(1, capture_id)
-      .bind_text(2, model)
-      .bind_text(3, params_json)
-      .bind_text(4, result_json)
-      .run();
-  return db_->last_insert_rowid();
-}
+// ---- biometrics ----------------------------------------------------------
 
 void Store::append_biometrics(std::int64_t capture_id, std::span<const BiometricSample> samples) {
   sqlite::Transaction tx(*db_);
@@ -187,18 +176,6 @@ std::vector<BiometricSample> Store::load_biometrics(std::int64_t capture_id) {
     out.push_back({st.column_int(0), st.column_double(1), st.column_double(2), st.column_double(3),
                    st.column_double(4)});
   return out;
-}
-
-std::vector<FitInfo> Store::list_fits(std::int64_t capture_id) {
-  std::vector<FitInfo> fits;
-  auto st = db_->prepare(
-      "SELECT id, capture_id, model, params, result, created_at FROM fits"
-      " WHERE capture_id = ?1 ORDER BY id");
-  st.bind_int(1, capture_id);
-  while (st.step())
-    fits.push_back({st.column_int(0), st.column_int(1), st.column_text(2), st.column_text(3),
-                    st.column_text(4), st.column_text(5)});
-  return fits;
 }
 
 }  // namespace knoblab::store

@@ -15,12 +15,13 @@
 //
 // Where the fit happens: nowhere in the loop. update() only folds each sample
 // into fixed-size sufficient statistics (running moments and normal
-// equations, see calibration_fit.hpp) held inside the controller itself, so
-// there is no sample buffer, nothing allocates, and the controller stays
-// trivially copyable (it travels in a CoreCommand). When the run ends, the
-// core publishes data() through a seqlock; non-realtime code turns it into
-// fitted values with evaluate() (which solves the small systems and may
-// throw/report "too little data").
+// equations: the fitting core's accumulators, knoblab/fit/calibration.hpp)
+// held inside the controller itself, so there is no sample buffer, nothing
+// allocates, and the controller stays trivially copyable (it travels in a
+// CoreCommand). When the run ends, the core publishes data() through a
+// seqlock; non-realtime code turns it into fitted values, with their 95%
+// confidence intervals, by evaluate() (which solves the small systems and
+// reports "too little data").
 //
 // All references are relative to the angle the shaft is at when the run
 // starts (θ₀); gravity phases are in absolute encoder angle.
@@ -35,7 +36,7 @@
 #include "knoblab/capture/daq.hpp"
 #include "knoblab/capture/pid.hpp"
 #include "knoblab/capture/sample.hpp"
-#include "knoblab/hapticd/calibration_fit.hpp"
+#include "knoblab/fit/calibration.hpp"
 #include "knoblab/model/filters.hpp"
 #include "knoblab/model/trajectory.hpp"
 
@@ -67,9 +68,9 @@ struct CalibrationData {
   std::int64_t cycles = 0;        // cycles run
   double theta0 = 0.0;            // rad, where the run started
   capture::SensorCalibration calibration{};  // the constants in use during the run
-  RunningStats theta{}, omega{}, alpha{}, torque{};  // commanded − measured
-  AccelGainAccumulator accel{true};
-  GravityAccumulator gravity{};
+  fit::RunningStats theta{}, omega{}, alpha{}, torque{};  // commanded − measured
+  fit::AccelGainAccumulator accel{true};
+  fit::GravityAccumulator gravity{};
 };
 
 // The fitted values, for non-realtime code.
@@ -79,9 +80,9 @@ struct CalibrationResult {
   bool fault = false;          // the supervisor latched a fault during the run
   bool torque_limited = false; // some command was clipped by the torque limit
   std::int64_t cycles = 0;
-  Table4 table4{};             // channels the run did not measure have n = 0
-  std::optional<AccelGainFit> accel;  // accel_gain
-  std::optional<GravityFit> gravity;  // gravity
+  fit::Table4 table4{};        // channels the run did not measure have n = 0
+  std::optional<fit::AccelGainFit> accel;  // accel_gain
+  std::optional<fit::GravityFit> gravity;  // gravity
   capture::SensorCalibration updated{};  // the run's constants with the fitted ones put in
   std::string error;           // empty when the run and its fits are usable
   bool ok() const { return error.empty(); }

@@ -16,9 +16,14 @@ namespace knoblab::hapticd {
 
 class Daemon;
 
+// `load_model` / `set_params` arguments (already checked against the
+// protocol schema) applied to `base`: load_model replaces the model
+// (partial = false), set_params changes only the keys given.
+RenderParams render_params_from_args(const nlohmann::json& args, RenderParams base, bool partial);
+
 class ControlHandler final : public control::CommandHandler {
  public:
-  explicit ControlHandler(Daemon& daemon) : daemon_(daemon) {}
+  ControlHandler(Daemon& daemon, const RenderParams& initial) : daemon_(daemon), params_(initial) {}
 
   control::Reply handle(const control::Request& request) override;
   void on_watchdog_expired(control::WatchdogReason reason) override;

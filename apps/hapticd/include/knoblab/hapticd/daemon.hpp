@@ -17,6 +17,7 @@
 #include "knoblab/hal/digital_lines.hpp"
 #include "knoblab/hapticd/core.hpp"
 #include "knoblab/hapticd/recorder.hpp"
+#include "knoblab/hapticd/render_params.hpp"
 #include "knoblab/modbus/poller.hpp"
 #include "knoblab/rt/periodic_loop.hpp"
 #include "knoblab/store/store.hpp"
@@ -38,6 +39,9 @@ struct DaemonConfig {
   std::size_t telemetry_decimation = 10;
   std::optional<modbus::PollerConfig> modbus;  // amplifier + biometrics; none = not wired
   std::string knob;                   // default knob name for captures
+  // Render model loaded at start (hapticd --model FILE): rendered once the
+  // mode is set to render, and the base later set_params calls change.
+  std::optional<RenderParams> initial_model;
 };
 
 class Daemon {

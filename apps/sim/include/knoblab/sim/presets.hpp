@@ -54,6 +54,15 @@ struct PresetInfo {
 // Inertia of the Study 2/3 haptic knob's mechanism, motor included (§3.3.2).
 inline constexpr double kHapticKnobInertia = 0.013e-3;  // kg·m²
 
+// One column of thesis Table 7 exactly as printed: mN·m, mN·m/(rad/s),
+// mN·m/(rad/s²), rad, rad/s, with the printed signs; NaN for a blank cell.
+// ci95 is the table's last row, the torque's overall 95% CI (mN·m).
+struct Table7Column {
+  double M, C_neg, B_neg, C_pos, B_pos, D_neg, D_pos, dv, A, P, S, ci95;
+};
+// Set 1 or 2 for one of the five thesis knobs; nullptr otherwise.
+const Table7Column* table7(std::string_view id, int set);
+
 std::span<const Preset> all();
 std::vector<PresetInfo> list();
 const Preset* find(std::string_view id);  // nullptr when unknown

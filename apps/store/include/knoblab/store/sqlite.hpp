@@ -5,8 +5,10 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "knoblab/store/error.hpp"
 
@@ -60,6 +62,8 @@ class Statement {
   Statement& bind_double(int index, double value);
   Statement& bind_int(int index, std::int64_t value);
   Statement& bind_text(int index, std::string_view value);
+  // Always a BLOB, also when empty (never NULL).
+  Statement& bind_blob(int index, std::span<const std::uint8_t> bytes);
   Statement& bind_null(int index);
 
   // true while rows come; on completion the statement resets itself (ending
@@ -75,6 +79,7 @@ class Statement {
   double column_double(int column) const;
   std::int64_t column_int(int column) const;
   std::string column_text(int column) const;
+  std::vector<std::uint8_t> column_blob(int column) const;
 
  private:
   friend class Connection;

@@ -1,5 +1,5 @@
 // The knoblab database: one sqlite file in WAL mode holding knobs, captures
-// with their samples, and fits. Typical use:
+// with their samples, and fits with their report files. Typical use:
 //
 //   auto store = Store::open("knoblab.db");
 //   auto w = store.begin_capture({.knob = "fan", .rate_hz = 10000, .source = "hapticd"});
@@ -70,12 +70,27 @@ class Store {
   // Note: sqlite stores -0.0 as 0.0; all other values come back bit-exact.
   interchange::Capture load_samples(std::int64_t id);
 
-  // With its samples and fits. Refuses a capture still 'recording'.
+  // With its samples, biometrics, fits and their files. Refuses a capture
+  // still 'recording'.
   void delete_capture(std::int64_t id);
 
+  // A fit of a capture and its report files, in one transaction: on any
+  // error (unknown capture, invalid JSON, a bad or duplicate file name)
+  // nothing is left behind, and a crash never leaves a fit without its files.
   std::int64_t insert_fit(std::int64_t capture_id, std::string_view model,
-                          std::string_view params_json, std::string_view result_json = "{}");
-  std::vector<FitInfo> list_fits(std::int64_t capture_id);
+                          std::string_view params_json, std::string_view result_json = "{}",
+                          std::span<const FitFile> files = {});
+  std::vector<FitInfo> list_fits(std::int64_t capture_id);  // by id
+  std::vector<FitInfo> list_all_fits();                     // of every capture, by id
+  std::optional<FitInfo> fit_info(std::int64_t fit_id);
+
+  // A fit's files by name; empty for a fit without files or an unknown id.
+  std::vector<FitFileInfo> list_fit_files(std::int64_t fit_id);
+  // Throws StoreError for an unknown fit or name.
+  std::vector<std::uint8_t> load_fit_file(std::int64_t fit_id, std::string_view name);
+  // All of a fit's files, by name, from one snapshot. Throws StoreError for an
+  // unknown fit.
+  std::vector<FitFile> load_fit_files(std::int64_t fit_id);
 
   // Biometrics recorded beside a capture, appended in one transaction.
   void append_biometrics(std::int64_t capture_id, std::span<const BiometricSample> samples);

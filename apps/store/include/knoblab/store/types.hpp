@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "knoblab/interchange/sample.hpp"
 
@@ -62,6 +63,19 @@ struct FitInfo {
   std::int64_t id = 0;
   std::int64_t capture_id = 0;
   std::string model, params, result, created_at;
+};
+
+// One file of a fit's report (a plot, fit.json, the render model), stored
+// byte for byte. name is a plain file name: not empty, no '/', no NUL, not
+// "." or "..", unique within its fit.
+struct FitFile {
+  std::string name;
+  std::vector<std::uint8_t> bytes;
+};
+
+struct FitFileInfo {
+  std::string name;
+  std::int64_t size = 0;  // bytes
 };
 
 }  // namespace knoblab::store

@@ -1,6 +1,6 @@
-// Sensor verification and calibration fits (thesis §2.2.1 and §1.2.3).
-// SI units throughout: rad, rad/s, rad/s², N·m, volts for the raw
-// accelerometer channel.
+// Sensor verification and calibration fits (thesis §2.2.1 and §1.2.3), the
+// fits hapticd's Calibrate mode runs. SI units throughout: rad, rad/s,
+// rad/s², N·m, volts for the raw accelerometer channel.
 //
 //   Table 4:  mean and SD of (commanded − measured) for θ, ω, α, τ.
 //   Eq. 12:   θ̈_true = C_cal · V_raw, least squares (Matlab's `\`).
@@ -10,29 +10,32 @@
 //             sensor lag (it shifts the phase by +δ one way and −δ the other).
 //
 // The fits are built on small accumulators of sufficient statistics (running
-// moments, normal equations). They are trivially copyable and never allocate,
-// so the realtime CalibrationController feeds them sample by sample; the
-// solving (which may throw) is done by non-realtime code. The span functions
-// below are the same fits over recorded data.
+// moments, LinearLsq's normal equations). They are trivially copyable and
+// never allocate, so the realtime CalibrationController feeds them sample by
+// sample; the solving (which may throw) is done by non-realtime code. The
+// span functions below are the same fits over recorded data.
+//
+// Every fitted value comes with a standard error and the half-width of its
+// two-sided 95% confidence interval, t(0.975, dof)·se (stats.hpp), with the
+// degrees of freedom of that estimate: n − 1 for a Table 4 mean, n − p for a
+// regression coefficient, 1 for the gravity amplitude and offset (the spread
+// of two directions' estimates).
+//
+// Too little or degenerate data: the fits throw FitDataError (fit_data.hpp).
 #pragma once
 
-#include <array>
 #include <cstdint>
 #include <span>
-#include <stdexcept>
 
-namespace knoblab::hapticd {
+#include "knoblab/fit/linear_lsq.hpp"
 
-// Thrown when a fit has too little (or degenerate) data.
-class FitError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+namespace knoblab::fit {
 
 struct ErrorStats {
   std::int64_t n = 0;
-  double mean = 0.0;  // of commanded − measured
-  double sd = 0.0;    // sample standard deviation (n − 1)
+  double mean = 0.0;       // of commanded − measured
+  double sd = 0.0;         // sample standard deviation (n − 1)
+  double mean_ci95 = 0.0;  // 95% half-width of the mean, t(0.975, n − 1)·sd/√n
 };
 
 // Welford's running mean / variance.
@@ -45,7 +48,7 @@ class RunningStats {
     m2_ += d * (x - mean_);
   }
   std::int64_t count() const noexcept { return n_; }
-  // Throws FitError for fewer than 2 values.
+  // Throws FitDataError for fewer than 2 values.
   ErrorStats stats() const;
 
  private:
@@ -58,51 +61,22 @@ struct Table4 {
   ErrorStats theta, omega, alpha, torque;
 };
 
-// Mean/SD of commanded[i] − measured[i]. Throws FitError when the sizes
+// Mean/SD of commanded[i] − measured[i]. Throws FitDataError when the sizes
 // differ or there are fewer than 2 values.
 ErrorStats error_stats(std::span<const double> commanded, std::span<const double> measured);
-
-// Least squares y ≈ Σ β_k·x_k by the normal equations (N ≤ 4 here, so they
-// are well enough conditioned in double).
-template <std::size_t N>
-class LinearLsq {
- public:
-  void add(const std::array<double, N>& x, double y) noexcept {
-    for (std::size_t i = 0; i < N; ++i) {
-      for (std::size_t j = 0; j < N; ++j) xtx_[i][j] += x[i] * x[j];
-      xty_[i] += x[i] * y;
-    }
-    yty_ += y * y;
-    ++n_;
-  }
-  std::int64_t count() const noexcept { return n_; }
-
-  struct Solution {
-    std::array<double, N> beta{};
-    std::array<double, N> se{};  // standard errors, σ̂²·(XᵀX)⁻¹ diagonal
-    double residual_sd = 0.0;    // σ̂ = √(RSS / (n − N))
-    std::int64_t n = 0;
-  };
-  // Throws FitError for n ≤ N + 1 samples or a singular design.
-  Solution solve() const;
-
- private:
-  std::array<std::array<double, N>, N> xtx_{};
-  std::array<double, N> xty_{};
-  double yty_ = 0.0;
-  std::int64_t n_ = 0;
-};
 
 // ---- Eq. 12: accelerometer gain ----
 
 struct AccelGainFit {
-  double C_cal = 0.0;     // (rad/s²)/V
-  double C_cal_se = 0.0;  // standard error
+  double C_cal = 0.0;        // (rad/s²)/V
+  double C_cal_se = 0.0;     // standard error (delta method from 1/C_cal's)
+  double C_cal_ci95 = 0.0;   // 95% half-width, t(0.975, dof)·C_cal_se
   double residual_sd = 0.0;  // rad/s², of C_cal·V about the fit
   // With gravity terms: the gravity seen meanwhile (Eq. 2, B = 1), rad/s².
   bool with_gravity = false;
   double grav_A = 0.0, grav_C = 0.0, grav_D = 0.0;
   std::int64_t n = 0;
+  std::int64_t dof = 0;  // n − 1, or n − 4 with the gravity terms
 };
 
 // Eq. 12: α_true = C_cal·V (no intercept), or, with_gravity,
@@ -118,7 +92,7 @@ class AccelGainAccumulator {
   explicit AccelGainAccumulator(bool with_gravity = true) : with_gravity_(with_gravity) {}
   void add(double volts, double alpha_true, double theta) noexcept;
   std::int64_t count() const noexcept { return with_gravity_ ? full_.count() : plain_.count(); }
-  AccelGainFit fit() const;  // throws FitError
+  AccelGainFit fit() const;  // throws FitDataError
 
  private:
   bool with_gravity_;
@@ -132,15 +106,30 @@ AccelGainFit fit_accel_gain(std::span<const double> volts, std::span<const doubl
 
 // ---- Eq. 2: gravity compensation ----
 
+// One direction's fit. The standard errors are the regression's (C's and A's
+// by the delta method through a·sin θ + b·cos θ), with dof = n − 3.
 struct GravityDirectionFit {
   double A = 0.0, C = 0.0, D = 0.0;  // rad/s², rad, rad/s²
+  double A_se = 0.0, C_se = 0.0, D_se = 0.0;
   double residual_sd = 0.0;
   std::int64_t n = 0;
+  std::int64_t dof = 0;
 };
 
+// The two directions combined. A and D are the means of the directions'
+// values (the lag moves neither), and their standard errors are those of a
+// mean of two estimates, half their spread: that also covers whatever else
+// differs between the directions, at the price of 1 degree of freedom
+// (t(0.975, 1) = 12.71). C is the phase of the averaged sin/cos coefficients,
+// the bisector of the two directions' phases; their spread is the lag (which
+// the average cancels), not noise, so C's standard error comes from the two
+// regressions, ½·√(se_cw² + se_ccw²), with Welch–Satterthwaite's dof.
 struct GravityFit {
   double A = 0.0, B = 1.0, C = 0.0, D = 0.0;  // Eq. 2, rad/s² (after C_cal)
-  double A_se = 0.0, D_se = 0.0;              // from the two directions' fits
+  double A_se = 0.0, D_se = 0.0;              // half the directions' spread
+  double A_ci95 = 0.0, D_ci95 = 0.0;          // t(0.975, 1)·se
+  double C_se = 0.0, C_ci95 = 0.0;            // rad, from the regressions
+  double C_dof = 0.0;                         // Welch–Satterthwaite, ≈ n_cw + n_ccw − 6
   GravityDirectionFit cw, ccw;                // θ increasing / decreasing
 };
 
@@ -149,7 +138,7 @@ class GravityAccumulator {
  public:
   void add(double theta, double y, bool ccw) noexcept;
   std::int64_t count(bool ccw) const noexcept { return ccw ? ccw_.count() : cw_.count(); }
-  GravityFit fit() const;  // throws FitError (each direction needs data)
+  GravityFit fit() const;  // throws FitDataError (each direction needs data)
 
  private:
   LinearLsq<3> cw_{}, ccw_{};
@@ -158,13 +147,8 @@ class GravityAccumulator {
 GravityFit fit_gravity(std::span<const double> theta_cw, std::span<const double> y_cw,
                        std::span<const double> theta_ccw, std::span<const double> y_ccw);
 
-// A·sin(θ + C) + D with A ≥ 0 and C in (−π, π] from a·sin θ + b·cos θ + D.
+// A·sin(θ + C) + D with A ≥ 0 and C in (−π, π] from a·sin θ + b·cos θ + D
+// (no standard errors).
 GravityDirectionFit gravity_from_coefficients(double a, double b, double D);
 
-}  // namespace knoblab::hapticd
-
-namespace knoblab::hapticd {
-extern template class LinearLsq<1>;
-extern template class LinearLsq<3>;
-extern template class LinearLsq<4>;
-}  // namespace knoblab::hapticd
+}  // namespace knoblab::fit

@@ -1,0 +1,118 @@
+// knoblab fit: fit the knob model to a capture (thesis Ch. 2, Eq. 6 and 7).
+#include <cstdio>
+#include <fstream>
+
+#include "commands.hpp"
+#include "fit_run.hpp"
+#include "knoblab/fit/render_model.hpp"
+#include "knoblab/fit/report.hpp"
+#include "knoblab/fit/result_json.hpp"
+#include "knoblab/interchange/csv.hpp"
+#include "knoblab/store/store.hpp"
+
+namespace knoblab::cli {
+
+const CommandSpec kFitSpec{
+    "fit",
+    "--input FILE.csv | --capture ID --db FILE [--model thesis6|render4] [--json OUT]\n"
+    "       [--report DIR] [--render-model OUT]",
+    "Fit the knob model (Eq. 6 with the Eq. 7 stick band) to a capture: parameters with\n"
+    "95% confidence intervals, detents per revolution, report plots. A capture from the\n"
+    "store gets its fit stored beside it (knoblab fits).",
+    {{"input", true, "interchange CSV to fit"},
+     {"capture", true, "capture id in the store"},
+     {"db", true, "sqlite store"},
+     {"model", true, "thesis6 (Eq. 6, default) or render4 (Eq. 14: M, B, A, P)"},
+     {"json", true, "write the fit as JSON (docs/fit.md); '-' for stdout"},
+     {"report", true, "directory for the report plots (PNG and SVG)"},
+     {"render-model", true, "write the render model file hapticd loads (--model)"},
+     {"alpha", true, "encoder (default: 2nd derivative of θ) or accel (the α column)"},
+     {"no-filter", false, "skip the Table 6 low-pass filters (data already clean)"},
+     {"detents", true, "auto (default), yes or no"},
+     {"no-stick", false, "do not estimate the Karnopp stick band"}},
+    0, 0};
+
+namespace {
+
+void write_text(const std::string& path, const std::string& text) {
+  if (path == "-") {
+    std::fwrite(text.data(), 1, text.size(), stdout);
+    std::fputc('\n', stdout);
+    return;
+  }
+  std::ofstream f(path, std::ios::binary | std::ios::trunc);
+  f << text << "\n";
+  if (!f.flush()) throw std::runtime_error("cannot write " + path);
+}
+
+}  // namespace
+
+int run_fit(const Args& args) {
+  fit::PrepOptions prep;
+  fit::FitOptions opt;
+  if (auto m = args.get("model")) {
+    const auto kind = fit::parse_model(*m);
+    if (!kind) throw UsageError("--model must be thesis6 or render4, got '" + *m + "'");
+    opt.model = *kind;
+  }
+  if (auto a = args.get("alpha")) {
+    if (*a == "encoder") prep.alpha = fit::AlphaSource::Encoder;
+    else if (*a == "accel") prep.alpha = fit::AlphaSource::Accelerometer;
+    else throw UsageError("--alpha must be encoder or accel");
+  }
+  if (auto d = args.get("detents")) {
+    if (*d == "auto") opt.detents = fit::FitOptions::Detents::Auto;
+    else if (*d == "yes") opt.detents = fit::FitOptions::Detents::Force;
+    else if (*d == "no") opt.detents = fit::FitOptions::Detents::None;
+    else throw UsageError("--detents must be auto, yes or no");
+  }
+  prep.filter = !args.has("no-filter");
+  opt.stick_band = !args.has("no-stick");
+
+  interchange::Capture capture;
+  std::optional<store::Store> db;
+  std::optional<std::int64_t> capture_id;
+  std::string title;
+  if (auto input = args.get("input")) {
+    if (args.has("capture")) throw UsageError("give --input or --capture, not both");
+    capture = interchange::read_csv(*input);
+    title = std::filesystem::path(*input).filename().string();
+  } else if (auto id = args.get("capture")) {
+    db.emplace(store::Store::open(args.require("db")));
+    capture_id = std::stoll(*id);
+    const auto info = db->capture_info(*capture_id);
+    if (!info) throw std::runtime_error("no capture " + *id + " in the store");
+    capture = db->load_samples(*capture_id);
+    title = "capture " + *id + (info->knob.empty() ? "" : " (" + info->knob + ")");
+  } else {
+    throw UsageError("give --input FILE.csv or --capture ID --db FILE");
+  }
+
+  const FitRun run = fit_capture(capture, prep, opt);
+  const fit::FitResult& r = run.result;
+  const bool json_to_stdout = args.get("json") == std::optional<std::string>("-");
+  if (!json_to_stdout) {
+    std::printf("%s\n", title.c_str());
+    print_fit(stdout, r);
+  }
+  const std::string json = fit::to_json(r);
+  if (auto out = args.get("json")) write_text(*out, json);
+  if (auto out = args.get("render-model")) {
+    write_text(*out, fit::to_json(fit::reduce_to_render(r, run.data.omega)));
+  }
+  if (auto dir = args.get("report")) {
+    fit::ReportOptions ro;
+    ro.title = title;
+    const auto files = fit::write_report(r, run.data, fit::predict(r, run.data), *dir, ro);
+    write_text((std::filesystem::path(*dir) / "fit.json").string(), json);
+    if (!json_to_stdout) std::printf("report: %zu files in %s\n", files.size() + 1, dir->c_str());
+  }
+  if (db && capture_id) {
+    const std::int64_t fit_id =
+        db->insert_fit(*capture_id, fit::model_name(r.model), fit::knob_json(r), json);
+    if (!json_to_stdout) std::printf("stored as fit %lld\n", static_cast<long long>(fit_id));
+  }
+  return 0;
+}
+
+}  // namespace knoblab::cli

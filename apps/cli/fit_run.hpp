@@ -1,0 +1,27 @@
+// One capture through the fitter: prepare (Table 6 filtering), fit, predict,
+// and the outputs a fit can write. Shared by `knoblab fit` and the demo.
+#pragma once
+
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "knoblab/fit/fit_data.hpp"
+#include "knoblab/fit/knob_fit.hpp"
+#include "knoblab/interchange/capture.hpp"
+
+namespace knoblab::cli {
+
+struct FitRun {
+  fit::FitData data;
+  fit::FitResult result;
+};
+
+FitRun fit_capture(const interchange::Capture& capture, const fit::PrepOptions& prep,
+               const fit::FitOptions& options);
+
+// The fitted parameters in presentation units (mN·m, rad), with 95% CIs.
+void print_fit(std::FILE* out, const fit::FitResult& r);
+
+}  // namespace knoblab::cli

@@ -1,0 +1,71 @@
+// What the fitter fits: time series of the knob's motion and torque, SI
+// units, prepared from a capture the way thesis §2.2.2.2 prepares it.
+//
+// Preparation (prepare()):
+//  * 3rd-order Chebyshev II low-pass, 20 dB stop band, edges of Table 6
+//    (θ, θ̇ 1000 Hz; θ̈, τ 500 Hz), run forward and backward (zero phase).
+//    A channel whose edge is at or above 0.9·Nyquist is left unfiltered.
+//  * θ̇ is the zero-phase derivative of the filtered θ: the recorded ω is the
+//    loop's causal estimate, which lags. θ̈ is the calibrated accelerometer
+//    (AlphaSource::Accelerometer) or the derivative of θ̇ (Encoder).
+//  * Samples the loop flagged (e-stop, fault latched, torque clipped) are
+//    filtered with the rest, then left out of the fit.
+// The thesis also sorts by position before filtering; filtering in time
+// keeps the filter meaningful, and the fit needs no order.
+#pragma once
+
+#include <cstddef>
+#include <span>
+#include <stdexcept>
+#include <vector>
+
+#include "knoblab/interchange/capture.hpp"
+#include "knoblab/interchange/sample.hpp"
+#include "knoblab/model/terms.hpp"
+
+namespace knoblab::fit {
+
+// Thrown for data a fit cannot use (too short, no motion, bad sample times).
+class FitDataError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct FitData {
+  std::vector<double> t;      // s
+  std::vector<double> theta;  // rad
+  std::vector<double> omega;  // rad/s
+  std::vector<double> alpha;  // rad/s²
+  std::vector<double> torque; // N·m
+  double rate_hz = 0.0;       // sample rate the preparation assumed
+
+  std::size_t size() const { return t.size(); }
+  model::Kinematics<double> kinematics(std::size_t i) const {
+    return {theta[i], omega[i], alpha[i]};
+  }
+};
+
+enum class AlphaSource {
+  Accelerometer,  // the recorded α column (calibrated accelerometer)
+  Encoder,        // second derivative of the encoder, zero phase
+};
+
+struct PrepOptions {
+  bool filter = true;  // Table 6 Chebyshev II, zero phase
+  int order = 3;
+  double stop_atten_db = 20.0;
+  double edge_theta_hz = 1000.0, edge_omega_hz = 1000.0;
+  double edge_alpha_hz = 500.0, edge_torque_hz = 500.0;
+  AlphaSource alpha = AlphaSource::Encoder;
+  // Flags that exclude a sample from the fit.
+  std::uint32_t exclude_flags = interchange::kEstopActive | interchange::kFaultLatched |
+                                interchange::kTorqueLimited;
+};
+
+// A capture whose α column was derived (absent from its CSV) uses the
+// encoder whatever `opt.alpha` says. Throws FitDataError for fewer than 100
+// samples, non-increasing or non-finite times or values, or a knob that did
+// not move.
+FitData prepare(const interchange::Capture& capture, const PrepOptions& opt = {});
+
+}  // namespace knoblab::fit

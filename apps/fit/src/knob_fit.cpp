@@ -1,0 +1,169 @@
+// fit_knob: starting values, Levenberg–Marquardt with Ceres, stick band,
+// covariance and the summary figures (see knob_fit.hpp).
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <numeric>
+
+#include "residual.hpp"
+
+namespace knoblab::fit {
+
+namespace {
+
+using detail::param_count;
+
+struct Solved {
+  std::vector<double> params;
+  int iterations = 0;
+};
+
+Solved solve(const FitData& d, std::span<const std::uint32_t> rows, const FitOptions& opt,
+             std::vector<double> start, const std::vector<bool>& fitted) {
+  const int n = param_count(opt.model);
+  ceres::Problem::Options po;
+  po.cost_function_ownership = ceres::TAKE_OWNERSHIP;
+  ceres::Problem problem(po);
+  for (std::size_t s = 0; s < rows.size(); s += detail::kChunk) {
+    const std::size_t len = std::min(detail::kChunk, rows.size() - s);
+    problem.AddResidualBlock(detail::make_chunk_cost(opt.model, d, rows.subspan(s, len)).release(),
+                             nullptr, start.data());
+  }
+  std::vector<int> held;
+  for (int k = 0; k < n; ++k) {
+    if (!fitted[static_cast<std::size_t>(k)]) held.push_back(k);
+  }
+  if (!held.empty()) problem.SetManifold(start.data(), new ceres::SubsetManifold(n, held));
+
+  ceres::Solver::Options so;
+  so.linear_solver_type = ceres::DENSE_QR;
+  so.max_num_iterations = opt.max_iterations;
+  so.num_threads = opt.threads;
+  so.function_tolerance = 1e-12;
+  so.parameter_tolerance = 1e-12;
+  so.gradient_tolerance = 1e-14;
+  so.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(so, &problem, &summary);
+  if (!summary.IsSolutionUsable()) {
+    throw FitDataError("the fit did not converge: " + summary.message);
+  }
+  return {std::move(start), summary.num_successful_steps + summary.num_unsuccessful_steps};
+}
+
+// A ≥ 0 and S in (−π, π]: one spelling for every equivalent detent term.
+void canonical_detents(std::vector<double>& p) {
+  const std::size_t a = p.size() - 3;  // A_pos, P_pos, S_pos are the last three
+  if (p[a] < 0) p[a] = -p[a], p[a + 2] += std::numbers::pi;
+  p[a + 2] = std::remainder(p[a + 2], 2 * std::numbers::pi);
+  if (p[a + 2] <= -std::numbers::pi) p[a + 2] += 2 * std::numbers::pi;
+}
+
+std::vector<std::uint32_t> outside_band(const FitData& d, std::span<const std::uint32_t> rows,
+                                        double dv) {
+  std::vector<std::uint32_t> kept;
+  kept.reserve(rows.size());
+  for (std::uint32_t i : rows) {
+    if (std::abs(d.omega[i]) >= dv) kept.push_back(i);
+  }
+  return kept;
+}
+
+}  // namespace
+
+FitResult fit_knob(const FitData& d, const FitOptions& opt) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (d.size() < 16) throw FitDataError("too few samples to fit");
+  const std::size_t n = static_cast<std::size_t>(param_count(opt.model));
+  std::vector<std::uint32_t> rows(d.size());
+  std::iota(rows.begin(), rows.end(), 0u);
+
+  FitResult r;
+  r.model = opt.model;
+  r.names = param_names(opt.model);
+  const std::size_t a = n - 3;  // A_pos, P_pos, S_pos are the last three
+
+  std::vector<double> start;
+  if (opt.start) {
+    if (opt.start->size() != n) throw std::invalid_argument("start vector has the wrong size");
+    start = *opt.start;
+    r.detents = start[a] != 0.0;
+  } else {
+    const detail::StartValues sv = detail::find_start(d, rows, opt);
+    start = sv.params;
+    r.detents = sv.detents;
+    r.detent_power = sv.power;
+    r.detent_false_alarm = sv.false_alarm;
+  }
+  r.fitted.assign(n, true);
+  if (!r.detents) r.fitted[a] = r.fitted[a + 1] = r.fitted[a + 2] = false;
+  if (rows.size() <= n + 1) throw FitDataError("too few samples for the model's parameters");
+
+  Solved s = solve(d, rows, opt, start, r.fitted);
+  r.iterations = s.iterations;
+  if (opt.stick_band && opt.model == ModelKind::Thesis6) {
+    r.stick = detail::estimate_stick_band(d, rows, detail::as_thesis(opt.model, s.params.data()));
+    if (r.stick) {
+      // The sliding law does not hold inside the band: fit without it.
+      std::vector<std::uint32_t> kept = outside_band(d, rows, r.stick->dv);
+      if (kept.size() > 10 * n) {
+        rows = std::move(kept);
+        s = solve(d, rows, opt, s.params, r.fitted);
+        r.iterations += s.iterations;
+        std::vector<std::uint32_t> all(d.size());
+        std::iota(all.begin(), all.end(), 0u);
+        if (auto again = detail::estimate_stick_band(
+                d, all, detail::as_thesis(opt.model, s.params.data()))) {
+          r.stick = again;
+        }
+      }
+    }
+  }
+  if (r.detents) canonical_detents(s.params);
+  r.params = s.params;
+
+  const detail::CovarianceEstimate cov =
+      detail::estimate_covariance(opt.model, d, rows, r.params.data(), r.fitted);
+  r.covariance = cov.covariance;
+  r.se = cov.se;
+  r.t95 = cov.t95;
+  r.covariance_inflation = cov.inflation;
+  r.ci95.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double h = r.t95 * r.se[k];
+    r.ci95[k] = {r.params[k] - h, r.params[k] + h};
+  }
+
+  // Summary figures over the fitted samples.
+  const double m = static_cast<double>(rows.size());
+  std::size_t k_free = 0;
+  for (bool f : r.fitted) k_free += f ? 1 : 0;
+  double mean = 0.0;
+  for (std::uint32_t i : rows) mean += d.torque[i];
+  mean /= m;
+  double tss = 0.0;
+  for (std::uint32_t i : rows) tss += (d.torque[i] - mean) * (d.torque[i] - mean);
+  r.samples = rows.size();
+  r.rmse_Nm = std::sqrt(cov.rss / m);
+  r.fit_percent = tss > 0 ? 100.0 * (1.0 - std::sqrt(cov.rss / tss)) : 0.0;
+  r.bic = m * std::log(cov.rss / m) + static_cast<double>(k_free) * std::log(m);
+  r.residual_sd = std::sqrt(cov.rss / (m - static_cast<double>(k_free)));
+  double band = 0.0;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const double* J = cov.jacobian.data() + i * n;
+    double v = 0.0;
+    for (std::size_t p = 0; p < n; ++p) {
+      for (std::size_t q = 0; q < n; ++q) v += J[p] * r.covariance[p * n + q] * J[q];
+    }
+    band += r.t95 * std::sqrt(std::max(0.0, v));
+  }
+  r.ci95_torque_Nm = band / m;
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+model::ThesisModel<double> thesis_model(const FitResult& r) {
+  return detail::as_thesis(r.model, r.params.data());
+}
+
+}  // namespace knoblab::fit

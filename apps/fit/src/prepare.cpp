@@ -1,0 +1,87 @@
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "knoblab/fit/fit_data.hpp"
+#include "knoblab/model/filters.hpp"
+
+namespace knoblab::fit {
+
+namespace {
+
+constexpr std::size_t kMinSamples = 100;
+
+void check_capture(const interchange::Capture& c) {
+  const std::size_t n = c.size();
+  if (n < kMinSamples) {
+    throw FitDataError("a fit needs at least " + std::to_string(kMinSamples) + " samples, got " +
+                       std::to_string(n));
+  }
+  if (c.theta.size() != n || c.omega.size() != n || c.alpha.size() != n || c.torque.size() != n ||
+      (!c.flags.empty() && c.flags.size() != n)) {
+    throw FitDataError("the capture's channels have different lengths");
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!std::isfinite(c.t[i]) || !std::isfinite(c.theta[i]) || !std::isfinite(c.alpha[i]) ||
+        !std::isfinite(c.torque[i])) {
+      throw FitDataError("sample " + std::to_string(i) + " has a non-finite value");
+    }
+    if (i > 0 && !(c.t[i] > c.t[i - 1])) {
+      throw FitDataError("sample times must increase (sample " + std::to_string(i) + ")");
+    }
+  }
+  const auto [lo, hi] = std::minmax_element(c.theta.begin(), c.theta.end());
+  if (*hi - *lo < 1e-3) throw FitDataError("the knob did not move (θ range < 1 mrad)");
+}
+
+// Median sample interval → rate: robust against one late sample.
+double sample_rate(const std::vector<double>& t) {
+  std::vector<double> dt(t.size() - 1);
+  for (std::size_t i = 1; i < t.size(); ++i) dt[i - 1] = t[i] - t[i - 1];
+  std::nth_element(dt.begin(), dt.begin() + static_cast<std::ptrdiff_t>(dt.size() / 2), dt.end());
+  return 1.0 / dt[dt.size() / 2];
+}
+
+// Table 6's filter on one channel; unfiltered when the edge is too close to
+// Nyquist for the filter to mean anything.
+std::vector<double> lowpass(const PrepOptions& o, double edge_hz, double fs,
+                            std::vector<double> x) {
+  if (!o.filter || edge_hz >= 0.45 * fs) return x;
+  const model::SosCascade f = model::design_cheby2_lowpass(o.order, o.stop_atten_db, edge_hz, fs);
+  if (x.size() <= model::sosfiltfilt_padlen(f)) return x;
+  return model::sosfiltfilt(f, x);
+}
+
+}  // namespace
+
+FitData prepare(const interchange::Capture& c, const PrepOptions& opt) {
+  check_capture(c);
+  const double fs = sample_rate(c.t);
+  const std::vector<double> theta = lowpass(opt, opt.edge_theta_hz, fs, c.theta);
+  const std::vector<double> omega =
+      lowpass(opt, opt.edge_omega_hz, fs, model::derivative(c.t, theta));
+  const bool encoder = opt.alpha == AlphaSource::Encoder || c.alpha_derived;
+  const std::vector<double> alpha =
+      lowpass(opt, opt.edge_alpha_hz, fs, encoder ? model::derivative(c.t, omega) : c.alpha);
+  const std::vector<double> torque = lowpass(opt, opt.edge_torque_hz, fs, c.torque);
+
+  // Leave out the samples the loop flagged, after filtering the whole series.
+  FitData d;
+  d.rate_hz = fs;
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    if (!c.flags.empty() && (c.flags[i] & opt.exclude_flags)) continue;
+    d.t.push_back(c.t[i]);
+    d.theta.push_back(theta[i]);
+    d.omega.push_back(omega[i]);
+    d.alpha.push_back(alpha[i]);
+    d.torque.push_back(torque[i]);
+  }
+  if (d.size() < kMinSamples) {
+    throw FitDataError("only " + std::to_string(d.size()) +
+                       " samples are left after excluding flagged ones (e-stop, fault, "
+                       "torque limit)");
+  }
+  return d;
+}
+
+}  // namespace knoblab::fit

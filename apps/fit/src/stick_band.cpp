@@ -1,0 +1,93 @@
+// Karnopp stick band (Eq. 7) from data, instead of by eye (thesis §2.2.2.3).
+//
+// Inside the band the knob sticks: the friction torque is whatever the hand
+// (here the motor) applies, up to D− / D+, not the sliding law's ±C + B·θ̇.
+// So the sliding-law residual of raw τ_vel = τ − τ_acc − τ_pos grows near
+// zero velocity. Binned by |θ̇| on a log scale, the band is the run of bins,
+// from the slowest up, whose RMS residual exceeds three times the robust
+// residual scale at speed; Δv is that run's upper edge. D± are the extreme
+// (99.5th percentile) raw τ_vel seen inside the band in each direction.
+#include <algorithm>
+#include <cmath>
+
+#include "residual.hpp"
+
+namespace knoblab::fit::detail {
+
+namespace {
+
+constexpr int kBins = 30;
+constexpr std::size_t kMinPerBin = 8;
+constexpr double kExcess = 3.0;
+
+double quantile(std::vector<double> v, double q) {
+  const auto k = static_cast<std::ptrdiff_t>(q * static_cast<double>(v.size() - 1));
+  std::nth_element(v.begin(), v.begin() + k, v.end());
+  return v[static_cast<std::size_t>(k)];
+}
+
+}  // namespace
+
+std::optional<StickBand> estimate_stick_band(const FitData& d,
+                                             std::span<const std::uint32_t> rows,
+                                             const model::ThesisModel<double>& m) {
+  std::vector<double> speed(rows.size()), tau_vel(rows.size()), e(rows.size());
+  double top = 0.0;
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    const auto parts = m.parts(d.kinematics(rows[j]));
+    speed[j] = std::abs(d.omega[rows[j]]);
+    tau_vel[j] = d.torque[rows[j]] - parts.acc - parts.pos;
+    e[j] = tau_vel[j] - parts.vel;
+    top = std::max(top, speed[j]);
+  }
+  if (top <= 0) return std::nullopt;
+
+  // Residual scale well away from zero velocity (median absolute deviation).
+  const double fast = 0.2 * top;
+  std::vector<double> outer;
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    if (speed[j] > fast) outer.push_back(e[j]);
+  }
+  if (outer.size() < 50) return std::nullopt;
+  const double med = quantile(outer, 0.5);
+  for (double& x : outer) x = std::abs(x - med);
+  const double sigma = 1.4826 * quantile(outer, 0.5);
+
+  // Log-spaced |θ̇| bins from 1e-4·top to the "fast" threshold.
+  const double lo = 1e-4 * top;
+  const double ratio = std::pow(fast / lo, 1.0 / kBins);
+  std::vector<double> sum2(kBins + 1, 0.0);
+  std::vector<std::size_t> count(kBins + 1, 0);
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    if (speed[j] >= fast) continue;
+    const int b = speed[j] < lo ? 0 : 1 + static_cast<int>(std::log(speed[j] / lo) / std::log(ratio));
+    const auto bb = static_cast<std::size_t>(std::min(b, kBins));
+    sum2[bb] += e[j] * e[j];
+    ++count[bb];
+  }
+  double dv = 0.0;
+  bool started = false;
+  for (int b = 0; b <= kBins; ++b) {
+    const auto bb = static_cast<std::size_t>(b);
+    if (count[bb] < kMinPerBin) continue;
+    const double rms = std::sqrt(sum2[bb] / static_cast<double>(count[bb]));
+    if (rms <= kExcess * sigma) break;
+    started = true;
+    dv = lo * std::pow(ratio, b);  // upper edge of bin b
+  }
+  if (!started) return std::nullopt;
+
+  StickBand band;
+  band.dv = dv;
+  std::vector<double> inside;
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    if (speed[j] < dv) inside.push_back(tau_vel[j]);
+  }
+  band.samples = inside.size();
+  if (inside.size() < kMinPerBin) return std::nullopt;
+  band.D_pos = std::max(0.0, quantile(inside, 0.995));
+  band.D_neg = std::max(0.0, -quantile(inside, 0.005));
+  return band;
+}
+
+}  // namespace knoblab::fit::detail

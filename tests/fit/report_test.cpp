@@ -1,0 +1,375 @@
+// write_report(): the eight files (PNG + SVG of four figures), their size and
+// content, and its failures. The fit is made by hand from a known Eq. 6 model,
+// so the test does not depend on the fitter.
+//
+// KNOBLAB_REPORT_EXAMPLE=dir keeps one example report in `dir` for a person
+// to look at.
+#include <gtest/gtest.h>
+#include <png.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <numbers>
+#include <random>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "knoblab/fit/report.hpp"
+
+namespace knoblab::fit {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Eq. 6 parameters in fit order (SI): M_acc, C−, B−, C+, B+, A, P, S.
+constexpr std::array<double, model::kThesisParamCount> kParams = {
+    1.0e-5, 2.0e-3, 2.0e-4, 2.5e-3, 1.6e-4, 5.0e-3, 1.0 / 12.0, 0.4};
+
+struct Case {
+  FitResult r;
+  FitData d;
+  Prediction p;
+};
+
+// A swept sine θ(t) = 2·sin(2π(f0·t + k·t²/2)), 0.1 → 1.5 Hz over 10 s at
+// 500 Hz, with torque from the known model plus white noise.
+Case make_case(double noise_Nm = 0.5e-3, unsigned seed = 1, bool detents = true,
+               std::size_t n = 5000) {
+  Case c;
+  std::array<double, model::kThesisParamCount> params = kParams;
+  if (!detents) params[model::kA_pos] = 0.0;
+  const auto m = model::ThesisModel<double>::from_params(params.data());
+
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, noise_Nm);
+  const double rate = 500.0, f0 = 0.1, k = 0.14, amp = 2.0;
+  const double two_pi = 2.0 * std::numbers::pi;
+  c.d.rate_hz = rate;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = static_cast<double>(i) / rate;
+    const double phi = two_pi * (f0 * t + 0.5 * k * t * t);
+    const double dphi = two_pi * (f0 + k * t), ddphi = two_pi * k;
+    const double theta = amp * std::sin(phi);
+    const double omega = amp * std::cos(phi) * dphi;
+    const double alpha = -amp * std::sin(phi) * dphi * dphi + amp * std::cos(phi) * ddphi;
+    c.d.t.push_back(t);
+    c.d.theta.push_back(theta);
+    c.d.omega.push_back(omega);
+    c.d.alpha.push_back(alpha);
+
+    const model::TorqueParts<double> parts = m.parts({theta, omega, alpha});
+    c.d.torque.push_back(parts.total() + noise(rng));
+    c.p.acc.push_back(parts.acc);
+    c.p.vel.push_back(parts.vel);
+    c.p.pos.push_back(parts.pos);
+    c.p.tau.push_back(parts.total());
+    // A band that grows with speed, like a real one; the observation band
+    // adds the noise.
+    const double half = 0.02e-3 + 0.004e-3 * std::abs(omega);
+    c.p.curve_half.push_back(half);
+    c.p.observation_half.push_back(std::hypot(half, 1.96 * noise_Nm));
+  }
+
+  c.r.model = ModelKind::Thesis6;
+  c.r.names.assign(model::kThesisParamNames.begin(), model::kThesisParamNames.end());
+  c.r.params.assign(params.begin(), params.end());
+  c.r.fitted.assign(params.size(), true);
+  c.r.detents = detents;
+  if (!detents) {
+    c.r.fitted[model::kA_pos] = c.r.fitted[model::kP_pos] = c.r.fitted[model::kS_pos] = false;
+  }
+  c.r.stick = StickBand{0.3, 2.0e-3, 2.5e-3, 40};
+  c.r.samples = n;
+  c.r.rmse_Nm = noise_Nm;
+  c.r.fit_percent = 97.0;
+  return c;
+}
+
+class ReportTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::path(::testing::TempDir()) / (std::string("knoblab_report_") + info->name());
+    fs::remove_all(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+const std::vector<std::string> kFiles = {
+    "torque_position.png", "torque_position.svg", "torque_velocity.png", "torque_velocity.svg",
+    "torque_time.png",     "torque_time.svg",     "ci_torque.png",       "ci_torque.svg"};
+
+std::string read_bytes(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::uint32_t be32(const std::string& s, std::size_t at) {
+  std::uint32_t v = 0;
+  for (std::size_t k = 0; k < 4; ++k) v = (v << 8) | static_cast<unsigned char>(s[at + k]);
+  return v;
+}
+
+// Width and height from the IHDR chunk, which must follow the signature.
+std::pair<std::uint32_t, std::uint32_t> png_size(const std::string& png) {
+  const std::string signature = "\x89PNG\r\n\x1a\n";
+  if (png.size() < 33 || png.compare(0, 8, signature) != 0 || png.compare(12, 4, "IHDR") != 0)
+    throw std::runtime_error("not a PNG");
+  return {be32(png, 16), be32(png, 20)};
+}
+
+struct Image {
+  std::uint32_t width = 0, height = 0;
+  std::vector<std::uint8_t> rgb;  // row-major, 3 bytes a pixel, on white
+  std::array<int, 3> at(std::uint32_t x, std::uint32_t y) const {
+    const std::size_t i = 3 * (static_cast<std::size_t>(y) * width + x);
+    return {rgb[i], rgb[i + 1], rgb[i + 2]};
+  }
+};
+
+Image decode(const fs::path& file) {
+  png_image img{};
+  img.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&img, file.c_str()))
+    throw std::runtime_error("cannot read " + file.string());
+  img.format = PNG_FORMAT_RGB;
+  Image out;
+  out.width = img.width;
+  out.height = img.height;
+  out.rgb.resize(PNG_IMAGE_SIZE(img));
+  png_color white{255, 255, 255};
+  if (!png_image_finish_read(&img, &white, out.rgb.data(), 0, nullptr))
+    throw std::runtime_error("cannot decode " + file.string());
+  return out;
+}
+
+bool dark(const std::array<int, 3>& c) { return c[0] < 100 && c[1] < 100 && c[2] < 100; }
+// The raw clouds' light gray (190, 190, 190), with some antialiasing slack.
+bool cloud_gray(const std::array<int, 3>& c) {
+  return c[0] == c[1] && c[1] == c[2] && c[0] >= 180 && c[0] <= 200;
+}
+std::size_t count(const Image& im, bool (*pred)(const std::array<int, 3>&)) {
+  std::size_t n = 0;
+  for (std::uint32_t y = 0; y < im.height; ++y)
+    for (std::uint32_t x = 0; x < im.width; ++x) n += pred(im.at(x, y)) ? 1 : 0;
+  return n;
+}
+
+TEST_F(ReportTest, WritesTheEightFilesAndCreatesTheDirectory) {
+  const Case c = make_case();
+  const fs::path dir = dir_ / "nested" / "report";
+  ReportOptions opt;
+  opt.title = "Knob #3 (swept sine)";
+  const auto files = write_report(c.r, c.d, c.p, dir, opt);
+  ASSERT_EQ(files.size(), kFiles.size());
+  std::set<std::string> names;
+  for (const fs::path& f : files) {
+    EXPECT_EQ(f.parent_path(), dir);
+    EXPECT_TRUE(fs::is_regular_file(f)) << f;
+    EXPECT_GT(fs::file_size(f), 1000u) << f;
+    names.insert(f.filename().string());
+  }
+  EXPECT_EQ(names, std::set<std::string>(kFiles.begin(), kFiles.end()));
+
+  if (const char* keep = std::getenv("KNOBLAB_REPORT_EXAMPLE")) {
+    fs::create_directories(keep);
+    for (const fs::path& f : files)
+      fs::copy_file(f, fs::path(keep) / f.filename(), fs::copy_options::overwrite_existing);
+  }
+}
+
+TEST_F(ReportTest, PngsHaveTheRequestedSizeAndSvgsAreSvg) {
+  const Case c = make_case();
+  ReportOptions opt;
+  opt.width_px = 1000;
+  opt.height_px = 640;
+  for (const fs::path& f : write_report(c.r, c.d, c.p, dir_, opt)) {
+    const std::string bytes = read_bytes(f);
+    if (f.extension() == ".png") {
+      const auto [w, h] = png_size(bytes);
+      EXPECT_EQ(w, 1000u) << f;
+      EXPECT_EQ(h, 640u) << f;
+    } else {
+      EXPECT_NE(bytes.find("<svg"), std::string::npos) << f;
+      EXPECT_NE(bytes.find("</svg>"), std::string::npos) << f;
+      EXPECT_NE(bytes.find("width=\"1000"), std::string::npos) << f;
+      EXPECT_NE(bytes.find("height=\"640"), std::string::npos) << f;
+    }
+  }
+}
+
+TEST_F(ReportTest, PlotsAreWhiteWithBlackAxesAndAGrayCloud) {
+  const Case c = make_case();
+  write_report(c.r, c.d, c.p, dir_);
+  for (const char* name : {"torque_position.png", "torque_velocity.png", "torque_time.png"}) {
+    const Image im = decode(dir_ / name);
+    ASSERT_EQ(im.width, 1200u);
+    ASSERT_EQ(im.height, 900u);
+    // White background.
+    for (const auto& [x, y] : {std::pair{0u, 0u}, std::pair{1199u, 0u}, std::pair{0u, 899u},
+                               std::pair{1199u, 899u}})
+      EXPECT_EQ(im.at(x, y), (std::array<int, 3>{255, 255, 255})) << name;
+    // Two stacked plot boxes: some column is dark over most of the height
+    // (the left frame of both panels).
+    std::uint32_t best = 0;
+    for (std::uint32_t x = 0; x < im.width; ++x) {
+      std::uint32_t rows = 0;
+      for (std::uint32_t y = 0; y < im.height; ++y) rows += dark(im.at(x, y)) ? 1 : 0;
+      best = std::max(best, rows);
+    }
+    EXPECT_GT(best, im.height * 6 / 10) << name;
+    // The raw cloud covers a real area of the page.
+    EXPECT_GT(count(im, cloud_gray), im.width * im.height / 100) << name;
+  }
+}
+
+TEST_F(ReportTest, RawCloudsAreThinnedToMaxPoints) {
+  const Case c = make_case();
+  ReportOptions few;
+  few.max_points = 100;
+  write_report(c.r, c.d, c.p, dir_ / "few", few);
+  write_report(c.r, c.d, c.p, dir_ / "all");
+  const std::size_t gray_few = count(decode(dir_ / "few" / "torque_time.png"), cloud_gray);
+  const std::size_t gray_all = count(decode(dir_ / "all" / "torque_time.png"), cloud_gray);
+  EXPECT_LT(gray_few * 5, gray_all);
+}
+
+TEST_F(ReportTest, OutputFollowsTheData) {
+  // Same input, same bytes (no time stamps): so a difference below is the data.
+  const Case a = make_case(0.5e-3, 1);
+  const Case b = make_case(0.5e-3, 2);
+  write_report(a.r, a.d, a.p, dir_ / "a1");
+  write_report(a.r, a.d, a.p, dir_ / "a2");
+  write_report(b.r, b.d, b.p, dir_ / "b");
+  for (const char* name : {"torque_position.png", "torque_velocity.png", "torque_time.png"}) {
+    const std::string a1 = read_bytes(dir_ / "a1" / name);
+    EXPECT_EQ(a1, read_bytes(dir_ / "a2" / name)) << name;
+    EXPECT_NE(a1, read_bytes(dir_ / "b" / name)) << name;
+  }
+}
+
+TEST_F(ReportTest, KnobWithoutDetentsStillGetsPositionPlots) {
+  const Case c = make_case(0.5e-3, 1, /*detents=*/false);
+  const auto files = write_report(c.r, c.d, c.p, dir_);
+  ASSERT_EQ(files.size(), kFiles.size());
+  const Image im = decode(dir_ / "torque_position.png");
+  EXPECT_GT(count(im, cloud_gray), im.width * im.height / 100);
+}
+
+TEST_F(ReportTest, WorksWithoutAnObservationBand) {
+  Case c = make_case();
+  c.p.observation_half.clear();
+  EXPECT_EQ(write_report(c.r, c.d, c.p, dir_).size(), kFiles.size());
+}
+
+TEST_F(ReportTest, NonFiniteBandValuesAreLeftOut) {
+  // A failed covariance gives NaN bands; the rest of the report still draws.
+  Case c = make_case(0.5e-3, 1, true, 2000);
+  for (std::size_t i = 0; i < c.p.curve_half.size(); i += 7)
+    c.p.curve_half[i] = std::numeric_limits<double>::quiet_NaN();
+  c.p.observation_half.assign(c.p.observation_half.size(),
+                              std::numeric_limits<double>::infinity());
+  ASSERT_EQ(write_report(c.r, c.d, c.p, dir_).size(), kFiles.size());
+  const Image im = decode(dir_ / "torque_position.png");
+  EXPECT_GT(count(im, cloud_gray), im.width * im.height / 100);
+}
+
+TEST_F(ReportTest, ConcurrentCallsAreSerialized) {
+  const Case c = make_case(0.5e-3, 1, true, 1500);
+  std::vector<std::size_t> written(3, 0);
+  std::vector<std::thread> threads;
+  for (std::size_t k = 0; k < written.size(); ++k) {
+    threads.emplace_back([&, k] {
+      written[k] = write_report(c.r, c.d, c.p, dir_ / std::to_string(k)).size();
+    });
+  }
+  for (auto& t : threads) t.join();
+  for (std::size_t k = 0; k < written.size(); ++k) {
+    EXPECT_EQ(written[k], kFiles.size());
+    const std::string png = read_bytes(dir_ / std::to_string(k) / "torque_position.png");
+    EXPECT_EQ(png_size(png).first, 1200u);
+  }
+}
+
+TEST_F(ReportTest, UncreatableDirectoryThrowsWithThePath) {
+  const Case c = make_case(0.5e-3, 1, true, 500);
+  fs::create_directories(dir_);
+  const fs::path plain = dir_ / "plain_file";
+  std::ofstream(plain) << "not a directory";
+  const fs::path target = plain / "report";
+  try {
+    write_report(c.r, c.d, c.p, target);
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(target.string()), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(ReportTest, UnwritableFileThrowsWithThePath) {
+  // A directory where a file should go: PLplot must not get to prompt or exit.
+  const Case c = make_case(0.5e-3, 1, true, 500);
+  const fs::path blocker = dir_ / "torque_velocity.svg";
+  fs::create_directories(blocker);
+  try {
+    write_report(c.r, c.d, c.p, dir_);
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(blocker.string()), std::string::npos) << e.what();
+  }
+  // The files before it were written, and PLplot still works afterwards.
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "torque_position.png"));
+  fs::remove_all(blocker);
+  EXPECT_EQ(write_report(c.r, c.d, c.p, dir_).size(), kFiles.size());
+}
+
+TEST_F(ReportTest, MismatchedSizesAreRejected) {
+  const Case good = make_case(0.5e-3, 1, true, 500);
+  {
+    Case c = good;
+    c.p.tau.pop_back();
+    EXPECT_THROW(write_report(c.r, c.d, c.p, dir_), std::invalid_argument);
+  }
+  {
+    Case c = good;
+    c.p.curve_half.push_back(0.0);
+    EXPECT_THROW(write_report(c.r, c.d, c.p, dir_), std::invalid_argument);
+  }
+  {
+    Case c = good;
+    c.p.observation_half.resize(10);
+    EXPECT_THROW(write_report(c.r, c.d, c.p, dir_), std::invalid_argument);
+  }
+  {
+    Case c = good;
+    c.d.torque.pop_back();
+    EXPECT_THROW(write_report(c.r, c.d, c.p, dir_), std::invalid_argument);
+  }
+  {
+    Case c = good;
+    c.d = FitData{};
+    c.p = Prediction{};
+    EXPECT_THROW(write_report(c.r, c.d, c.p, dir_), std::invalid_argument);
+  }
+  ReportOptions opt;
+  opt.max_points = 0;
+  EXPECT_THROW(write_report(good.r, good.d, good.p, dir_, opt), std::invalid_argument);
+  opt = {};
+  opt.width_px = 0;
+  EXPECT_THROW(write_report(good.r, good.d, good.p, dir_, opt), std::invalid_argument);
+  // Nothing was written for rejected input.
+  EXPECT_FALSE(fs::exists(dir_));
+}
+
+}  // namespace
+}  // namespace knoblab::fit
