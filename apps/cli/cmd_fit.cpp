@@ -26,7 +26,7 @@ const CommandSpec kFitSpec{
      {"json", true, "write the fit as JSON (docs/fit.md); '-' for stdout"},
      {"report", true, "directory for the report plots (PNG and SVG)"},
      {"render-model", true, "write the render model file hapticd loads (--model)"},
-     {"alpha", true, "encoder (default: 2nd derivative of θ) or accel (the α column)"},
+     {"alpha", true, "accel (default: the α column, when the CSV has one) or encoder (θ'')"},
      {"no-filter", false, "skip the Table 6 low-pass filters (data already clean)"},
      {"detents", true, "auto (default), yes or no"},
      {"no-stick", false, "do not estimate the Karnopp stick band"}},

@@ -44,11 +44,13 @@ void print_fit(std::FILE* out, const fit::FitResult& r) {
     std::fprintf(out, "  %-10s %12.5g  %-27s %s\n", name.c_str(), r.params[k] * p.scale, ci, p.unit);
   }
   if (r.detents) {
-    std::fprintf(out, "detents: %.2f per revolution (false-alarm probability %.1e)\n",
-                 1.0 / r.value("P_pos"), r.detent_false_alarm);
+    std::fprintf(out, "detents: %.2f per revolution (explains %.0f %% of the position residual, "
+                 "false-alarm probability %.1e)\n",
+                 1.0 / r.value("P_pos"), 100 * r.detent_power, r.detent_false_alarm);
   } else {
-    std::fprintf(out, "detents: none found (false-alarm probability of the best peak %.2g)\n",
-                 r.detent_false_alarm);
+    std::fprintf(out, "detents: none found (best peak explains %.0f %% of the position residual, "
+                 "false-alarm probability %.2g)\n",
+                 100 * r.detent_power, r.detent_false_alarm);
   }
   if (r.stick) {
     std::fprintf(out, "stick band (Eq. 7): dv %.4g rad/s, D- %.4g mN·m, D+ %.4g mN·m (%zu samples)\n",

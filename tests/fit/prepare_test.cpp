@@ -49,9 +49,11 @@ TEST(Prepare, TableSixFilterRemovesTheHumAndKeepsTheSignalInPhase) {
   EXPECT_GT(rms_between(prepare(c, raw).torque, slow, 100), 0.001);
 }
 
-TEST(Prepare, VelocityAndAccelerationComeFromTheEncoderByDefault) {
+TEST(Prepare, VelocityFromTheEncoderAccelerationFromTheAccelerometerByDefault) {
   const interchange::Capture c = sweep_capture(5000);
-  const FitData d = prepare(c);
+  PrepOptions encoder;
+  encoder.alpha = AlphaSource::Encoder;
+  const FitData d = prepare(c, encoder);
   const model::SweptSine sweep = model::SweptSine::spatial();
   double worst_w = 0, worst_a = 0;
   for (std::size_t i = 200; i < d.size() - 200; ++i) {
@@ -61,14 +63,14 @@ TEST(Prepare, VelocityAndAccelerationComeFromTheEncoderByDefault) {
   EXPECT_LT(worst_w, 1e-4);
   EXPECT_LT(worst_a, 1e-2);  // not the accelerometer's +5 offset
 
-  PrepOptions accel;
-  accel.alpha = AlphaSource::Accelerometer;
-  const FitData da = prepare(c, accel);
+  // The default reads the α column (the capture's accelerometer, +5 here).
+  const FitData da = prepare(c);
   EXPECT_NEAR(da.alpha[d.size() / 2] - sweep.alpha(da.t[d.size() / 2]), 5.0, 0.01);
+  EXPECT_NEAR(da.omega[d.size() / 2], d.omega[d.size() / 2], 1e-12);
 
   interchange::Capture derived = c;
   derived.alpha_derived = true;  // the CSV had no α: the encoder it is
-  EXPECT_NEAR(prepare(derived, accel).alpha[d.size() / 2], d.alpha[d.size() / 2], 1e-12);
+  EXPECT_NEAR(prepare(derived).alpha[d.size() / 2], d.alpha[d.size() / 2], 1e-12);
 }
 
 TEST(Prepare, FlaggedSamplesAreFilteredWithTheRestThenLeftOut) {

@@ -1,5 +1,6 @@
 // fit_knob: starting values, Levenberg–Marquardt with Ceres, stick band,
 // covariance and the summary figures (see knob_fit.hpp).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -18,8 +19,15 @@ struct Solved {
   int iterations = 0;
 };
 
+// P stays inside the range the detent search covered: outside it a sine is
+// a ramp or a constant, which trades off against the friction terms.
+struct PeriodBounds {
+  double lo = 0.0, hi = 0.0;  // 0: unbounded
+};
+
 Solved solve(const FitData& d, std::span<const std::uint32_t> rows, const FitOptions& opt,
-             std::vector<double> start, const std::vector<bool>& fitted) {
+             std::vector<double> start, const std::vector<bool>& fitted,
+             PeriodBounds bounds = {}) {
   const int n = param_count(opt.model);
   ceres::Problem::Options po;
   po.cost_function_ownership = ceres::TAKE_OWNERSHIP;
@@ -34,6 +42,13 @@ Solved solve(const FitData& d, std::span<const std::uint32_t> rows, const FitOpt
     if (!fitted[static_cast<std::size_t>(k)]) held.push_back(k);
   }
   if (!held.empty()) problem.SetManifold(start.data(), new ceres::SubsetManifold(n, held));
+  const int p_index = n - 2;  // P_pos
+  if (bounds.hi > bounds.lo && fitted[static_cast<std::size_t>(p_index)]) {
+    auto& P = start[static_cast<std::size_t>(p_index)];
+    P = std::clamp(P, bounds.lo, bounds.hi);
+    problem.SetParameterLowerBound(start.data(), p_index, bounds.lo);
+    problem.SetParameterUpperBound(start.data(), p_index, bounds.hi);
+  }
 
   ceres::Solver::Options so;
   so.linear_solver_type = ceres::DENSE_QR;
@@ -57,6 +72,49 @@ void canonical_detents(std::vector<double>& p) {
   if (p[a] < 0) p[a] = -p[a], p[a + 2] += std::numbers::pi;
   p[a + 2] = std::remainder(p[a + 2], 2 * std::numbers::pi);
   if (p[a + 2] <= -std::numbers::pi) p[a + 2] += 2 * std::numbers::pi;
+}
+
+// Samples where the knob slides briskly: |θ̇| at least a tenth of the 95th
+// percentile speed. Stuck samples and reversals carry torque the sliding law
+// does not explain, all at a few positions (where the sweep turns), which a
+// periodogram over position would take for detents.
+std::vector<std::uint32_t> moving_rows(const FitData& d, std::span<const std::uint32_t> rows) {
+  std::vector<double> speed(rows.size());
+  for (std::size_t j = 0; j < rows.size(); ++j) speed[j] = std::abs(d.omega[rows[j]]);
+  const auto k = static_cast<std::ptrdiff_t>(0.95 * static_cast<double>(speed.size() - 1));
+  std::nth_element(speed.begin(), speed.begin() + k, speed.end());
+  const double threshold = 0.1 * speed[static_cast<std::size_t>(k)];
+  std::vector<std::uint32_t> kept;
+  kept.reserve(rows.size());
+  for (std::uint32_t i : rows) {
+    if (std::abs(d.omega[i]) >= threshold) kept.push_back(i);
+  }
+  // Too few left (a capture that mostly stands still): search them all.
+  if (kept.size() < rows.size() / 2) return {rows.begin(), rows.end()};
+  return kept;
+}
+
+std::vector<std::uint32_t> within_robust_range(const FitData& d,
+                                               std::span<const std::uint32_t> rows,
+                                               ModelKind kind, const std::vector<double>& p) {
+  const model::ThesisModel<double> m = detail::as_thesis(kind, p.data());
+  std::vector<double> e(rows.size());
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    e[j] = d.torque[rows[j]] - m.torque(d.kinematics(rows[j]));
+  }
+  std::vector<double> dev = e;
+  const auto mid = static_cast<std::ptrdiff_t>(dev.size() / 2);
+  std::nth_element(dev.begin(), dev.begin() + mid, dev.end());
+  const double med = dev[static_cast<std::size_t>(mid)];
+  for (double& x : dev) x = std::abs(x - med);
+  std::nth_element(dev.begin(), dev.begin() + mid, dev.end());
+  const double limit = 5.0 * 1.4826 * dev[static_cast<std::size_t>(mid)];
+  std::vector<std::uint32_t> kept;
+  kept.reserve(rows.size());
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    if (!(limit > 0) || std::abs(e[j] - med) <= limit) kept.push_back(rows[j]);
+  }
+  return kept;
 }
 
 std::vector<std::uint32_t> outside_band(const FitData& d, std::span<const std::uint32_t> rows,
@@ -84,13 +142,15 @@ FitResult fit_knob(const FitData& d, const FitOptions& opt) {
   const std::size_t a = n - 3;  // A_pos, P_pos, S_pos are the last three
 
   std::vector<double> start;
+  PeriodBounds bounds;
   if (opt.start) {
     if (opt.start->size() != n) throw std::invalid_argument("start vector has the wrong size");
     start = *opt.start;
     r.detents = start[a] != 0.0;
   } else {
-    const detail::StartValues sv = detail::find_start(d, rows, opt);
+    const detail::StartValues sv = detail::find_start(d, moving_rows(d, rows), opt);
     start = sv.params;
+    bounds = {sv.period_lo, sv.period_hi};
     r.detents = sv.detents;
     r.detent_power = sv.power;
     r.detent_false_alarm = sv.false_alarm;
@@ -99,7 +159,7 @@ FitResult fit_knob(const FitData& d, const FitOptions& opt) {
   if (!r.detents) r.fitted[a] = r.fitted[a + 1] = r.fitted[a + 2] = false;
   if (rows.size() <= n + 1) throw FitDataError("too few samples for the model's parameters");
 
-  Solved s = solve(d, rows, opt, start, r.fitted);
+  Solved s = solve(d, rows, opt, start, r.fitted, bounds);
   r.iterations = s.iterations;
   if (opt.stick_band && opt.model == ModelKind::Thesis6) {
     r.stick = detail::estimate_stick_band(d, rows, detail::as_thesis(opt.model, s.params.data()));
@@ -108,7 +168,7 @@ FitResult fit_knob(const FitData& d, const FitOptions& opt) {
       std::vector<std::uint32_t> kept = outside_band(d, rows, r.stick->dv);
       if (kept.size() > 10 * n) {
         rows = std::move(kept);
-        s = solve(d, rows, opt, s.params, r.fitted);
+        s = solve(d, rows, opt, s.params, r.fitted, bounds);
         r.iterations += s.iterations;
         std::vector<std::uint32_t> all(d.size());
         std::iota(all.begin(), all.end(), 0u);
@@ -117,6 +177,19 @@ FitResult fit_knob(const FitData& d, const FitOptions& opt) {
           r.stick = again;
         }
       }
+    }
+  }
+  // Breakaway transients: just outside the band a compliant gripper rings,
+  // with accelerations far above the sweep's, so a handful of samples the
+  // sliding law cannot describe would set M. Leave out what lies beyond five
+  // robust standard deviations (MAD) and fit once more.
+  if (opt.trim_outliers) {
+    std::vector<std::uint32_t> kept = within_robust_range(d, rows, opt.model, s.params);
+    r.outliers = rows.size() - kept.size();
+    if (r.outliers > 0 && kept.size() > 10 * n) {
+      rows = std::move(kept);
+      s = solve(d, rows, opt, s.params, r.fitted, bounds);
+      r.iterations += s.iterations;
     }
   }
   if (r.detents) canonical_detents(s.params);

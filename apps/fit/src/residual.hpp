@@ -78,6 +78,7 @@ struct StartValues {
   bool detents = false;
   double power = 0.0;        // explained share of the binned position residual
   double false_alarm = 1.0;  // chance of a peak this high from noise alone
+  double period_lo = 0.0, period_hi = 0.0;  // P range searched (bounds for the fit)
 };
 StartValues find_start(const FitData& data, std::span<const std::uint32_t> rows,
                        const FitOptions& opt);

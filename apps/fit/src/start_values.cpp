@@ -13,6 +13,10 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kFalseAlarmLimit = 1e-4;
+// Detents are the main structure of the position residual, not one line in a
+// broad spectrum (smooth position dependence, transients where the sweep
+// turns): the peak must explain at least this share of it.
+constexpr double kMinDetentShare = 0.25;
 
 // Regressor columns of the model's linear part (everything but the detents),
 // in parameter order, for one sample.
@@ -136,6 +140,8 @@ StartValues find_start(const FitData& d, std::span<const std::uint32_t> rows,
     const double f_lo = std::max(opt.min_detents_per_rev, kPi / range);
     const double f_hi = std::min(opt.max_detents_per_rev, kPi / (2 * bin_width));
     const double df = kPi / (4 * range);
+    out.period_lo = 1.0 / f_hi;
+    out.period_hi = 1.0 / f_lo;
     if (b.theta.size() > 8 && f_hi > f_lo) {
       const model::AngularPeriodogram pg = model::angular_periodogram(b.theta, b.value, f_lo, f_hi, df);
       f_peak = refine_frequency(b, std::max(f_lo, pg.peak.frequency - df),
@@ -153,7 +159,7 @@ StartValues find_start(const FitData& d, std::span<const std::uint32_t> rows,
   out.detents = opt.detents == FitOptions::Detents::Force
                     ? f_peak > 0
                     : (opt.detents == FitOptions::Detents::Auto && f_peak > 0 &&
-                       out.false_alarm < kFalseAlarmLimit);
+                       out.false_alarm < kFalseAlarmLimit && out.power >= kMinDetentShare);
 
   // Step 3: everything else linear at that period.
   const Eigen::VectorXd beta = out.detents ? linear_fit(opt.model, d, rows, f_peak, nullptr) : beta0;

@@ -7,7 +7,12 @@
 //    A channel whose edge is at or above 0.9·Nyquist is left unfiltered.
 //  * θ̇ is the zero-phase derivative of the filtered θ: the recorded ω is the
 //    loop's causal estimate, which lags. θ̈ is the calibrated accelerometer
-//    (AlphaSource::Accelerometer) or the derivative of θ̇ (Encoder).
+//    (AlphaSource::Accelerometer, the default, as the thesis did) or the
+//    derivative of θ̇ (Encoder). The accelerometer rides on the knob side of
+//    the gripper, like the torque sensor's load, while the encoder is on the
+//    motor: through a compliant gripper the motor's acceleration at a
+//    breakaway is not the knob's, and M fitted on it comes out high (12 % on
+//    the simulated high-friction knob).
 //  * Samples the loop flagged (e-stop, fault latched, torque clipped) are
 //    filtered with the rest, then left out of the fit.
 // The thesis also sorts by position before filtering; filtering in time
@@ -56,7 +61,7 @@ struct PrepOptions {
   double stop_atten_db = 20.0;
   double edge_theta_hz = 1000.0, edge_omega_hz = 1000.0;
   double edge_alpha_hz = 500.0, edge_torque_hz = 500.0;
-  AlphaSource alpha = AlphaSource::Encoder;
+  AlphaSource alpha = AlphaSource::Accelerometer;
   // Flags that exclude a sample from the fit.
   std::uint32_t exclude_flags = interchange::kEstopActive | interchange::kFaultLatched |
                                 interchange::kTorqueLimited;

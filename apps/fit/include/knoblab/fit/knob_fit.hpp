@@ -19,6 +19,10 @@
 //  4. The Karnopp stick band (Eq. 7) is estimated from the friction residual
 //     near zero velocity; samples inside it do not obey the sliding law, so
 //     the fit is repeated without them.
+//  5. Samples whose residual lies beyond five robust standard deviations
+//     (breakaway transients, a compliant gripper ringing) are left out and
+//     the fit is repeated once: a few such samples with large accelerations
+//     would otherwise set M.
 // Confidence intervals come from the parameter covariance. Residuals of real
 // (and filtered) data are correlated, so the covariance is the sandwich
 // estimate with batch means of the scores (64 contiguous batches) and the
@@ -55,6 +59,7 @@ struct FitOptions {
   double max_detents_per_rev = 200.0;
   enum class Detents { Auto, Force, None } detents = Detents::Auto;
   bool stick_band = true;      // estimate Eq. 7's Δv, D−, D+
+  bool trim_outliers = true;   // leave out residuals beyond 5 robust SDs (breakaway transients)
   std::optional<std::vector<double>> start;  // skip the search; full parameter vector
   int max_iterations = 100;
   int threads = 2;
@@ -83,7 +88,8 @@ struct FitResult {
   double detent_false_alarm = 1.0; // probability of a peak that high from noise
   std::optional<StickBand> stick;
 
-  std::size_t samples = 0;      // samples fitted (outside the stick band)
+  std::size_t samples = 0;      // samples fitted (outside the stick band, not outliers)
+  std::size_t outliers = 0;     // left out as beyond 5 robust SDs
   double rmse_Nm = 0.0;
   double fit_percent = 0.0;     // 100·(1 − ‖y − ŷ‖ / ‖y − ȳ‖), Matlab's "fit"
   double bic = 0.0;             // n·ln(RSS/n) + k·ln(n)
