@@ -35,11 +35,18 @@ CovarianceEstimate estimate_covariance(ModelKind kind, const FitData& data,
                                        std::span<const std::uint32_t> rows, const double* p,
                                        const std::vector<bool>& fitted) {
   const std::size_t n = static_cast<std::size_t>(param_count(kind));
-  const std::size_t m = rows.size();
+  std::vector<double> residuals(rows.size()), jacobian(rows.size() * n);
+  evaluate_rows(kind, data, rows, p, residuals, jacobian);
+  return covariance_from_rows(std::move(residuals), std::move(jacobian), n, fitted);
+}
+
+CovarianceEstimate covariance_from_rows(std::vector<double> residuals,
+                                        std::vector<double> jacobian, std::size_t n,
+                                        const std::vector<bool>& fitted) {
+  const std::size_t m = residuals.size();
   CovarianceEstimate out;
-  out.residuals.resize(m);
-  out.jacobian.resize(m * n);
-  evaluate_rows(kind, data, rows, p, out.residuals, out.jacobian);
+  out.residuals = std::move(residuals);
+  out.jacobian = std::move(jacobian);
 
   std::vector<Eigen::Index> free;
   for (std::size_t k = 0; k < n; ++k) {

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <numeric>
 
+#include "position_cells.hpp"
 #include "residual.hpp"
 
 namespace knoblab::fit {
@@ -25,17 +26,41 @@ struct PeriodBounds {
   double lo = 0.0, hi = 0.0;  // 0: unbounded
 };
 
-Solved solve(const FitData& d, std::span<const std::uint32_t> rows, const FitOptions& opt,
-             std::vector<double> start, const std::vector<bool>& fitted,
-             PeriodBounds bounds = {}) {
+// The residuals Ceres sees: every sample (exact), or the position cells.
+struct Residuals {
+  const FitData* d = nullptr;
+  std::span<const std::uint32_t> rows;            // exact
+  const detail::PositionCells* cells = nullptr;   // compressed
+};
+
+template <int N>
+void add_cell_blocks(ceres::Problem& problem, ModelKind kind, const detail::PositionCells& cells,
+                     double* x) {
+  for (const detail::Cell& c : cells.cells()) {
+    if (c.count == 0) continue;
+    problem.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<detail::CellResidual, detail::kCellCols, N>(
+            new detail::CellResidual{kind, &c, cells.half_width()}),
+        nullptr, x);
+  }
+}
+
+Solved solve(const Residuals& res, const FitOptions& opt, std::vector<double> start,
+             const std::vector<bool>& fitted, PeriodBounds bounds = {}) {
   const int n = param_count(opt.model);
   ceres::Problem::Options po;
   po.cost_function_ownership = ceres::TAKE_OWNERSHIP;
   ceres::Problem problem(po);
-  for (std::size_t s = 0; s < rows.size(); s += detail::kChunk) {
-    const std::size_t len = std::min(detail::kChunk, rows.size() - s);
-    problem.AddResidualBlock(detail::make_chunk_cost(opt.model, d, rows.subspan(s, len)).release(),
-                             nullptr, start.data());
+  if (res.cells) {
+    if (n == detail::kThesisParams) add_cell_blocks<detail::kThesisParams>(problem, opt.model, *res.cells, start.data());
+    else add_cell_blocks<detail::kRenderParams>(problem, opt.model, *res.cells, start.data());
+  } else {
+    for (std::size_t s = 0; s < res.rows.size(); s += detail::kChunk) {
+      const std::size_t len = std::min(detail::kChunk, res.rows.size() - s);
+      problem.AddResidualBlock(
+          detail::make_chunk_cost(opt.model, *res.d, res.rows.subspan(s, len)).release(), nullptr,
+          start.data());
+    }
   }
   std::vector<int> held;
   for (int k = 0; k < n; ++k) {
@@ -51,9 +76,11 @@ Solved solve(const FitData& d, std::span<const std::uint32_t> rows, const FitOpt
   }
 
   ceres::Solver::Options so;
-  so.linear_solver_type = ceres::DENSE_QR;
+  // 8 parameters: the normal equations are 8 × 8, far cheaper than a QR of
+  // the stacked Jacobian and well conditioned at this size.
+  so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
   so.max_num_iterations = opt.max_iterations;
-  so.num_threads = opt.threads;
+  so.num_threads = res.cells ? 1 : opt.threads;  // cells: too little work to share
   so.function_tolerance = 1e-12;
   so.parameter_tolerance = 1e-12;
   so.gradient_tolerance = 1e-14;
@@ -81,9 +108,7 @@ void canonical_detents(std::vector<double>& p) {
 std::vector<std::uint32_t> moving_rows(const FitData& d, std::span<const std::uint32_t> rows) {
   std::vector<double> speed(rows.size());
   for (std::size_t j = 0; j < rows.size(); ++j) speed[j] = std::abs(d.omega[rows[j]]);
-  const auto k = static_cast<std::ptrdiff_t>(0.95 * static_cast<double>(speed.size() - 1));
-  std::nth_element(speed.begin(), speed.begin() + k, speed.end());
-  const double threshold = 0.1 * speed[static_cast<std::size_t>(k)];
+  const double threshold = 0.1 * detail::strided_quantile(speed, 0.95);
   std::vector<std::uint32_t> kept;
   kept.reserve(rows.size());
   for (std::uint32_t i : rows) {
@@ -94,37 +119,57 @@ std::vector<std::uint32_t> moving_rows(const FitData& d, std::span<const std::ui
   return kept;
 }
 
-std::vector<std::uint32_t> within_robust_range(const FitData& d,
-                                               std::span<const std::uint32_t> rows,
-                                               ModelKind kind, const std::vector<double>& p) {
-  const model::ThesisModel<double> m = detail::as_thesis(kind, p.data());
-  std::vector<double> e(rows.size());
-  for (std::size_t j = 0; j < rows.size(); ++j) {
-    e[j] = d.torque[rows[j]] - m.torque(d.kinematics(rows[j]));
+// Per-sample residuals (model − measured) and the velocity part of the
+// model, at p, for the rows.
+struct RowValues {
+  std::vector<double> residual, velocity_part;
+};
+RowValues evaluate(const Residuals& res, ModelKind kind, std::span<const std::uint32_t> rows,
+                   const std::vector<double>& p) {
+  RowValues out;
+  out.residual.resize(rows.size());
+  out.velocity_part.resize(rows.size());
+  if (res.cells) {
+    detail::evaluate_cells(kind, *res.cells, rows, p.data(), out.residual, {}, out.velocity_part);
+    return out;
   }
-  std::vector<double> dev = e;
-  const auto mid = static_cast<std::ptrdiff_t>(dev.size() / 2);
-  std::nth_element(dev.begin(), dev.begin() + mid, dev.end());
-  const double med = dev[static_cast<std::size_t>(mid)];
-  for (double& x : dev) x = std::abs(x - med);
-  std::nth_element(dev.begin(), dev.begin() + mid, dev.end());
-  const double limit = 5.0 * 1.4826 * dev[static_cast<std::size_t>(mid)];
+  const model::ThesisModel<double> m = detail::as_thesis(kind, p.data());
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    const auto parts = m.parts(res.d->kinematics(rows[j]));
+    out.residual[j] = parts.total() - res.d->torque[rows[j]];
+    out.velocity_part[j] = parts.vel;
+  }
+  return out;
+}
+
+// Rows whose residual lies within five robust standard deviations.
+std::vector<std::uint32_t> within_robust_range(std::span<const std::uint32_t> rows,
+                                               std::span<const double> e) {
+  const double med = detail::strided_quantile(e, 0.5);
+  std::vector<double> dev(e.size());
+  for (std::size_t j = 0; j < e.size(); ++j) dev[j] = std::abs(e[j] - med);
+  const double limit = 5.0 * 1.4826 * detail::strided_quantile(dev, 0.5);
   std::vector<std::uint32_t> kept;
   kept.reserve(rows.size());
   for (std::size_t j = 0; j < rows.size(); ++j) {
-    if (!(limit > 0) || std::abs(e[j] - med) <= limit) kept.push_back(rows[j]);
+    if (!(limit > 0) || dev[j] <= limit) kept.push_back(rows[j]);
   }
   return kept;
 }
 
-std::vector<std::uint32_t> outside_band(const FitData& d, std::span<const std::uint32_t> rows,
-                                        double dv) {
-  std::vector<std::uint32_t> kept;
-  kept.reserve(rows.size());
-  for (std::uint32_t i : rows) {
-    if (std::abs(d.omega[i]) >= dv) kept.push_back(i);
+// Leaves the rows not in `kept` out of the residuals (both sorted).
+void keep_only(Residuals& res, detail::PositionCells* cells, std::vector<std::uint32_t>& rows,
+               std::vector<std::uint32_t> kept) {
+  if (cells) {
+    std::size_t k = 0;
+    for (std::uint32_t i : rows) {
+      if (k < kept.size() && kept[k] == i) ++k;
+      else cells->remove(i);
+    }
+    cells->factor();
   }
-  return kept;
+  rows = std::move(kept);
+  res.rows = rows;
 }
 
 }  // namespace
@@ -159,23 +204,39 @@ FitResult fit_knob(const FitData& d, const FitOptions& opt) {
   if (!r.detents) r.fitted[a] = r.fitted[a + 1] = r.fitted[a + 2] = false;
   if (rows.size() <= n + 1) throw FitDataError("too few samples for the model's parameters");
 
-  Solved s = solve(d, rows, opt, start, r.fitted, bounds);
+  // Cells a quarter of the shortest period P may take (or one bin: no detents).
+  std::optional<detail::PositionCells> cells;
+  Residuals res{&d, rows, nullptr};
+  if (opt.compress) {
+    const double p_min = bounds.hi > bounds.lo ? std::max(bounds.lo, 0.5 * start[a + 1]) : start[a + 1];
+    cells.emplace(d, rows, r.detents ? 0.25 * p_min : 0.0);
+    cells->factor();
+    res.cells = &*cells;
+  }
+  detail::PositionCells* cp = cells ? &*cells : nullptr;
+
+  Solved s = solve(res, opt, start, r.fitted, bounds);
   r.iterations = s.iterations;
   if (opt.stick_band && opt.model == ModelKind::Thesis6) {
-    r.stick = detail::estimate_stick_band(d, rows, detail::as_thesis(opt.model, s.params.data()));
+    const RowValues all = evaluate(res, opt.model, rows, s.params);
+    std::vector<double> speed(rows.size()), tau_vel(rows.size()), e(rows.size());
+    for (std::size_t j = 0; j < rows.size(); ++j) {
+      speed[j] = std::abs(d.omega[rows[j]]);
+      e[j] = -all.residual[j];
+      tau_vel[j] = e[j] + all.velocity_part[j];
+    }
+    r.stick = detail::estimate_stick_band(speed, tau_vel, e);
     if (r.stick) {
       // The sliding law does not hold inside the band: fit without it.
-      std::vector<std::uint32_t> kept = outside_band(d, rows, r.stick->dv);
+      std::vector<std::uint32_t> kept;
+      kept.reserve(rows.size());
+      for (std::uint32_t i : rows) {
+        if (std::abs(d.omega[i]) >= r.stick->dv) kept.push_back(i);
+      }
       if (kept.size() > 10 * n) {
-        rows = std::move(kept);
-        s = solve(d, rows, opt, s.params, r.fitted, bounds);
+        keep_only(res, cp, rows, std::move(kept));
+        s = solve(res, opt, s.params, r.fitted, bounds);
         r.iterations += s.iterations;
-        std::vector<std::uint32_t> all(d.size());
-        std::iota(all.begin(), all.end(), 0u);
-        if (auto again = detail::estimate_stick_band(
-                d, all, detail::as_thesis(opt.model, s.params.data()))) {
-          r.stick = again;
-        }
       }
     }
   }
@@ -184,19 +245,26 @@ FitResult fit_knob(const FitData& d, const FitOptions& opt) {
   // sliding law cannot describe would set M. Leave out what lies beyond five
   // robust standard deviations (MAD) and fit once more.
   if (opt.trim_outliers) {
-    std::vector<std::uint32_t> kept = within_robust_range(d, rows, opt.model, s.params);
+    const RowValues now = evaluate(res, opt.model, rows, s.params);
+    std::vector<std::uint32_t> kept = within_robust_range(rows, now.residual);
     r.outliers = rows.size() - kept.size();
     if (r.outliers > 0 && kept.size() > 10 * n) {
-      rows = std::move(kept);
-      s = solve(d, rows, opt, s.params, r.fitted, bounds);
+      keep_only(res, cp, rows, std::move(kept));
+      s = solve(res, opt, s.params, r.fitted, bounds);
       r.iterations += s.iterations;
     }
   }
   if (r.detents) canonical_detents(s.params);
   r.params = s.params;
 
-  const detail::CovarianceEstimate cov =
-      detail::estimate_covariance(opt.model, d, rows, r.params.data(), r.fitted);
+  detail::CovarianceEstimate cov;
+  if (cells) {
+    std::vector<double> residuals(rows.size()), jacobian(rows.size() * n);
+    detail::evaluate_cells(opt.model, *cells, rows, r.params.data(), residuals, jacobian);
+    cov = detail::covariance_from_rows(std::move(residuals), std::move(jacobian), n, r.fitted);
+  } else {
+    cov = detail::estimate_covariance(opt.model, d, rows, r.params.data(), r.fitted);
+  }
   r.covariance = cov.covariance;
   r.se = cov.se;
   r.t95 = cov.t95;

@@ -96,10 +96,20 @@ struct CovarianceEstimate {
 CovarianceEstimate estimate_covariance(ModelKind kind, const FitData& data,
                                        std::span<const std::uint32_t> rows, const double* p,
                                        const std::vector<bool>& fitted);
+// The same from residuals and Jacobian rows (m × n) evaluated elsewhere.
+CovarianceEstimate covariance_from_rows(std::vector<double> residuals,
+                                        std::vector<double> jacobian, std::size_t n,
+                                        const std::vector<bool>& fitted);
 
-// Stick band from the sliding-law residual near zero velocity (stick_band.cpp).
-std::optional<StickBand> estimate_stick_band(const FitData& data,
-                                             std::span<const std::uint32_t> rows,
-                                             const model::ThesisModel<double>& m);
+// Stick band from the sliding-law residual near zero velocity (stick_band.cpp):
+// per sample |θ̇|, raw τ_vel = τ − τ_acc − τ_pos and the sliding law's
+// residual τ_vel − τ̂_vel.
+std::optional<StickBand> estimate_stick_band(std::span<const double> speed,
+                                             std::span<const double> tau_vel,
+                                             std::span<const double> sliding_residual);
+
+// The q-quantile of at most ~20 000 evenly strided values of v (robust
+// scales and thresholds do not need every one of 10⁵ samples).
+double strided_quantile(std::span<const double> v, double q);
 
 }  // namespace knoblab::fit::detail

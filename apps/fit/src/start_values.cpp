@@ -36,33 +36,47 @@ int linear_columns(ModelKind kind, double omega, double alpha, double* x) {
 }
 
 // Least squares over the rows with the linear columns and, when f > 0,
-// sin(fθ), cos(fθ). Columns are scaled to unit RMS first so that indicator
-// columns and accelerations of hundreds of rad/s² condition alike.
+// sin(fθ), cos(fθ), by the normal equations (at most 7 columns; one pass over
+// the data). Columns are scaled to unit norm first so that indicator columns
+// and accelerations of hundreds of rad/s² condition alike.
 Eigen::VectorXd linear_fit(ModelKind kind, const FitData& d, std::span<const std::uint32_t> rows,
                            double f, Eigen::VectorXd* residual) {
-  double x[8];
+  constexpr int kMax = 7;
+  double x[kMax + 1];
   const int nlin = linear_columns(kind, 0.0, 0.0, x);
   const int ncol = nlin + (f > 0 ? 2 : 0);
-  Eigen::MatrixXd X(static_cast<Eigen::Index>(rows.size()), ncol);
-  Eigen::VectorXd y(static_cast<Eigen::Index>(rows.size()));
-  for (std::size_t j = 0; j < rows.size(); ++j) {
-    const std::uint32_t i = rows[j];
+  double xtx[kMax][kMax] = {}, xty[kMax] = {};
+  auto row = [&](std::uint32_t i) {
     linear_columns(kind, d.omega[i], d.alpha[i], x);
-    const auto r = static_cast<Eigen::Index>(j);
-    for (int c = 0; c < nlin; ++c) X(r, c) = x[c];
-    if (f > 0) {
-      X(r, nlin) = std::sin(f * d.theta[i]);
-      X(r, nlin + 1) = std::cos(f * d.theta[i]);
+    if (f > 0) x[nlin] = std::sin(f * d.theta[i]), x[nlin + 1] = std::cos(f * d.theta[i]);
+  };
+  for (std::uint32_t i : rows) {
+    row(i);
+    const double y = d.torque[i];
+    for (int a = 0; a < ncol; ++a) {
+      xty[a] += x[a] * y;
+      for (int b = a; b < ncol; ++b) xtx[a][b] += x[a] * x[b];
     }
-    y(r) = d.torque[i];
   }
-  Eigen::VectorXd scale = X.colwise().norm().transpose();
-  for (Eigen::Index c = 0; c < ncol; ++c) {
-    if (scale(c) == 0) scale(c) = 1;  // a column with no data (e.g. never ω < 0)
+  Eigen::MatrixXd G(ncol, ncol);
+  Eigen::VectorXd g(ncol), scale(ncol);
+  for (int a = 0; a < ncol; ++a) {
+    scale(a) = xtx[a][a] > 0 ? std::sqrt(xtx[a][a]) : 1.0;  // a column with no data
   }
-  const Eigen::MatrixXd Xs = X * scale.cwiseInverse().asDiagonal();
-  Eigen::VectorXd beta = Xs.colPivHouseholderQr().solve(y).cwiseQuotient(scale);
-  if (residual) *residual = y - X * beta;
+  for (int a = 0; a < ncol; ++a) {
+    g(a) = xty[a] / scale(a);
+    for (int b = a; b < ncol; ++b) G(a, b) = G(b, a) = xtx[a][b] / (scale(a) * scale(b));
+  }
+  Eigen::VectorXd beta = G.colPivHouseholderQr().solve(g).cwiseQuotient(scale);
+  if (residual) {
+    residual->resize(static_cast<Eigen::Index>(rows.size()));
+    for (std::size_t j = 0; j < rows.size(); ++j) {
+      row(rows[j]);
+      double fitted = 0.0;
+      for (int a = 0; a < ncol; ++a) fitted += x[a] * beta(a);
+      (*residual)(static_cast<Eigen::Index>(j)) = d.torque[rows[j]] - fitted;
+    }
+  }
   return beta;
 }
 
@@ -133,8 +147,12 @@ StartValues find_start(const FitData& d, std::span<const std::uint32_t> rows,
   // data can show: at least half a cycle over the range, at most four bins a
   // cycle.
   double f_peak = 0.0;
+  model::SinusoidFit peak;
   if (opt.detents != FitOptions::Detents::None && range > 1e-3) {
-    const std::size_t nbins = std::clamp<std::size_t>(rows.size() / 8, 64, 4096);
+    // Eight bins to the shortest period searched, at most one per 8 samples.
+    const double shortest = 2 * kPi / opt.max_detents_per_rev;
+    const auto wanted = static_cast<std::size_t>(std::ceil(8 * range / shortest));
+    const std::size_t nbins = std::clamp<std::size_t>(std::min(wanted, rows.size() / 8), 64, 4096);
     const Binned b = bin_by_position(d, rows, residual, lo, hi, nbins);
     const double bin_width = range / static_cast<double>(nbins);
     const double f_lo = std::max(opt.min_detents_per_rev, kPi / range);
@@ -146,7 +164,8 @@ StartValues find_start(const FitData& d, std::span<const std::uint32_t> rows,
       const model::AngularPeriodogram pg = model::angular_periodogram(b.theta, b.value, f_lo, f_hi, df);
       f_peak = refine_frequency(b, std::max(f_lo, pg.peak.frequency - df),
                                 pg.peak.frequency + df);
-      out.power = model::fit_sinusoid(b.theta, b.value, f_peak).power;
+      peak = model::fit_sinusoid(b.theta, b.value, f_peak);
+      out.power = peak.power;
       // Under noise alone a bin periodogram's power p at one frequency
       // exceeds x with probability (1 − x)^((m − 3)/2); independent
       // frequencies are 2π/range apart.
@@ -161,15 +180,15 @@ StartValues find_start(const FitData& d, std::span<const std::uint32_t> rows,
                     : (opt.detents == FitOptions::Detents::Auto && f_peak > 0 &&
                        out.false_alarm < kFalseAlarmLimit && out.power >= kMinDetentShare);
 
-  // Step 3: everything else linear at that period.
-  const Eigen::VectorXd beta = out.detents ? linear_fit(opt.model, d, rows, f_peak, nullptr) : beta0;
-  for (int c = 0; c < nlin; ++c) out.params[static_cast<std::size_t>(c)] = beta(c);
+  // Step 3: the other terms from the fit without detents, the detent term
+  // from the periodogram's sinusoid at the peak (its fit to the binned
+  // residual: A·sin(θ/P + S) + c). Levenberg–Marquardt refines them jointly.
+  for (int c = 0; c < nlin; ++c) out.params[static_cast<std::size_t>(c)] = beta0(c);
   const std::size_t a = static_cast<std::size_t>(nlin);  // A_pos, P_pos, S_pos follow
   if (out.detents) {
-    // a·sin φ + b·cos φ = A·sin(φ + S), A = |(a, b)|, S = atan2(b, a).
-    out.params[a] = std::hypot(beta(nlin), beta(nlin + 1));
+    out.params[a] = peak.amplitude;
     out.params[a + 1] = 1.0 / f_peak;
-    out.params[a + 2] = std::atan2(beta(nlin + 1), beta(nlin));
+    out.params[a + 2] = peak.phase;
   } else {
     out.params[a] = 0.0;
     out.params[a + 1] = 1.0;

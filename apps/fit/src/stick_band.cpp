@@ -31,36 +31,37 @@ double quantile(std::vector<double> v, double q) {
 
 }  // namespace
 
-std::optional<StickBand> estimate_stick_band(const FitData& d,
-                                             std::span<const std::uint32_t> rows,
-                                             const model::ThesisModel<double>& m) {
-  std::vector<double> speed(rows.size()), tau_vel(rows.size()), e(rows.size());
+double strided_quantile(std::span<const double> v, double q) {
+  const std::size_t stride = std::max<std::size_t>(1, v.size() / 20000);
+  std::vector<double> sample;
+  sample.reserve(v.size() / stride + 1);
+  for (std::size_t i = 0; i < v.size(); i += stride) sample.push_back(v[i]);
+  return quantile(std::move(sample), q);
+}
+
+std::optional<StickBand> estimate_stick_band(std::span<const double> speed,
+                                             std::span<const double> tau_vel,
+                                             std::span<const double> e) {
   double top = 0.0;
-  for (std::size_t j = 0; j < rows.size(); ++j) {
-    const auto parts = m.parts(d.kinematics(rows[j]));
-    speed[j] = std::abs(d.omega[rows[j]]);
-    tau_vel[j] = d.torque[rows[j]] - parts.acc - parts.pos;
-    e[j] = tau_vel[j] - parts.vel;
-    top = std::max(top, speed[j]);
-  }
+  for (double s : speed) top = std::max(top, s);
   if (top <= 0) return std::nullopt;
 
   // Residual scale well away from zero velocity (median absolute deviation).
   const double fast = 0.2 * top;
   std::vector<double> outer;
-  for (std::size_t j = 0; j < rows.size(); ++j) {
+  for (std::size_t j = 0; j < speed.size(); ++j) {
     if (speed[j] > fast) outer.push_back(e[j]);
   }
   if (outer.size() < 50) return std::nullopt;
-  const double med = quantile(outer, 0.5);
+  const double med = strided_quantile(outer, 0.5);
   for (double& x : outer) x = std::abs(x - med);
-  const double sigma = 1.4826 * quantile(outer, 0.5);
+  const double sigma = 1.4826 * strided_quantile(outer, 0.5);
 
   // Log-spaced |θ̇| bins from 1e-4·top to the "fast" threshold.
   const double lo = 1e-4 * top;
   const double ratio = std::pow(fast / lo, 1.0 / kBins);
   std::vector<std::size_t> off(kBins + 1, 0), count(kBins + 1, 0);
-  for (std::size_t j = 0; j < rows.size(); ++j) {
+  for (std::size_t j = 0; j < speed.size(); ++j) {
     if (speed[j] >= fast) continue;
     const int b = speed[j] < lo ? 0 : 1 + static_cast<int>(std::log(speed[j] / lo) / std::log(ratio));
     const auto bb = static_cast<std::size_t>(std::min(b, kBins));
@@ -81,7 +82,7 @@ std::optional<StickBand> estimate_stick_band(const FitData& d,
   StickBand band;
   band.dv = dv;
   std::vector<double> inside;
-  for (std::size_t j = 0; j < rows.size(); ++j) {
+  for (std::size_t j = 0; j < speed.size(); ++j) {
     if (speed[j] < dv) inside.push_back(tau_vel[j]);
   }
   band.samples = inside.size();

@@ -60,6 +60,9 @@ struct FitOptions {
   enum class Detents { Auto, Force, None } detents = Detents::Auto;
   bool stick_band = true;      // estimate Eq. 7's Δv, D−, D+
   bool trim_outliers = true;   // leave out residuals beyond 5 robust SDs (breakaway transients)
+  // Iterate over position cells (position_cells.hpp: exact up to a detent
+  // interpolation error ~1e-8·A) instead of every sample.
+  bool compress = true;
   std::optional<std::vector<double>> start;  // skip the search; full parameter vector
   int max_iterations = 100;
   int threads = 2;
