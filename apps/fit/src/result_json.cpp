@@ -41,6 +41,7 @@ std::string to_json(const FitResult& r, int indent) {
   j["ci95_torque_Nm"] = r.ci95_torque_Nm;
   j["covariance_inflation"] = r.covariance_inflation;
   j["samples"] = r.samples;
+  j["outliers"] = r.outliers;
   j["iterations"] = r.iterations;
   j["seconds"] = r.seconds;
   return j.dump(indent);

@@ -6,7 +6,7 @@
 //    "detents": {"present": true, "per_rev": 12.0, "power": …, "false_alarm": …},
 //    "stick": {"dv": …, "D_neg": …, "D_pos": …} | null,
 //    "rmse_Nm": …, "fit_percent": …, "bic": …, "ci95_torque_Nm": …,
-//    "samples": …, "iterations": …, "seconds": …}
+//    "samples": …, "outliers": …, "iterations": …, "seconds": …}
 // The "params" object (with "stick") is also a knob file `knoblab simulate
 // --params` reads.
 #pragma once
