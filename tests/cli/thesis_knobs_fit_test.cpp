@@ -81,7 +81,9 @@ TEST(ThesisKnobs, FittedAcrossSeedsDetentCountsAndIntervals) {
                 covered, pairs, 100 * share);
     // Measured 80–84 %; the usual miss is M_acc, 3–7 % low: the accelerometer's
     // noise attenuates the regression on it (errors in variables).
-    if (k.eq6_describes) EXPECT_GE(share, 0.7) << k.id;
+    if (k.eq6_describes) {
+      EXPECT_GE(share, 0.7) << k.id;
+    }
   }
 }
 
