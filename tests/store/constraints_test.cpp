@@ -5,6 +5,7 @@
 #include "test_util.hpp"
 
 namespace ks = knoblab::store;
+using ks::test::store_error;
 using ks::test::TempDir;
 using ::testing::HasSubstr;
 
@@ -16,17 +17,6 @@ ks::NewCapture new_capture() {
   c.rate_hz = 10000;
   c.source = "simulate";
   return c;
-}
-
-template <typename F>
-std::string store_error(F&& f) {
-  try {
-    f();
-  } catch (const ks::StoreError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no StoreError";
-  return {};
 }
 
 }  // namespace

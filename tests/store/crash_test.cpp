@@ -12,34 +12,13 @@
 
 namespace ks = knoblab::store;
 using ks::test::sample_at;
+using ks::test::Child;
+using ks::test::read_int64;
 using ks::test::TempDir;
 
 namespace {
 
 constexpr std::int64_t kBatch = 1000;
-
-// Kills and reaps the child if the test bails out early.
-struct Child {
-  pid_t pid = -1;
-  ~Child() {
-    if (pid > 0) {
-      ::kill(pid, SIGKILL);
-      ::waitpid(pid, nullptr, 0);
-    }
-  }
-};
-
-bool read_count(int fd, std::int64_t& n) {
-  std::size_t got = 0;
-  auto* p = reinterpret_cast<char*>(&n);
-  while (got < sizeof n) {
-    const ssize_t r = ::read(fd, p + got, sizeof n - got);
-    if (r < 0 && errno == EINTR) continue;
-    if (r <= 0) return false;
-    got += static_cast<std::size_t>(r);
-  }
-  return true;
-}
 
 // In the child: record "forever", reporting every commit through the pipe.
 [[noreturn]] void record_until_killed(const std::filesystem::path& db, int fd) {
@@ -90,7 +69,7 @@ TEST(StoreCrash, SigkillMidStreamLosesAtMostTheBatchInFlight) {
 
     std::int64_t reported = 0;
     for (int batches = 0; batches < kill_after[round]; ++batches)
-      ASSERT_TRUE(read_count(fds[0], reported)) << "child died early";
+      ASSERT_TRUE(read_int64(fds[0], reported)) << "child died early";
     ::usleep(static_cast<useconds_t>(round * 700));  // land at different points of a batch
     ASSERT_EQ(::kill(child.pid, SIGKILL), 0);
     int status = 0;
@@ -98,7 +77,7 @@ TEST(StoreCrash, SigkillMidStreamLosesAtMostTheBatchInFlight) {
     child.pid = -1;
     ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) << "status " << status;
     // Reports that made it into the pipe before the kill were committed too.
-    for (std::int64_t n; read_count(fds[0], n);) reported = n;
+    for (std::int64_t n; read_int64(fds[0], n);) reported = n;
     ::close(fds[0]);
 
     auto store = ks::Store::open(path);

@@ -15,6 +15,7 @@
 #include "test_util.hpp"
 
 namespace ks = knoblab::store;
+using ks::test::store_error;
 using ks::test::TempDir;
 using ::testing::HasSubstr;
 
@@ -60,16 +61,6 @@ std::int64_t finished_capture(ks::Store& store, const std::string& knob = "fan")
   for (int i = 0; i < 5; ++i) w.append(ks::test::sample_at(i));
   w.finish();
   return w.capture_id();
-}
-
-std::string store_error(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const ks::StoreError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no StoreError";
-  return {};
 }
 
 std::int64_t count(ks::Store& store, const std::string& table) {
@@ -322,16 +313,6 @@ namespace {
 constexpr int kFilesPerFit = 4;
 constexpr std::size_t kFileSize = 96 * 1024;
 
-struct Child {
-  pid_t pid = -1;
-  ~Child() {
-    if (pid > 0) {
-      ::kill(pid, SIGKILL);
-      ::waitpid(pid, nullptr, 0);
-    }
-  }
-};
-
 std::vector<ks::FitFile> crash_files(std::int64_t i) {
   std::vector<ks::FitFile> files;
   for (int k = 0; k < kFilesPerFit; ++k)
@@ -354,17 +335,6 @@ std::vector<ks::FitFile> crash_files(std::int64_t i) {
   }
 }
 
-bool read_index(int fd, std::int64_t& n) {
-  std::size_t got = 0;
-  auto* p = reinterpret_cast<char*>(&n);
-  while (got < sizeof n) {
-    const ssize_t r = ::read(fd, p + got, sizeof n - got);
-    if (r < 0 && errno == EINTR) continue;
-    if (r <= 0) return false;
-    got += static_cast<std::size_t>(r);
-  }
-  return true;
-}
 
 }  // namespace
 
@@ -381,7 +351,7 @@ TEST(StoreFitFiles, SigkillMidInsertNeverLeavesAFitWithoutItsFiles) {
   for (int round = 0; round < 2; ++round) {
     int fds[2];
     ASSERT_EQ(::pipe(fds), 0);
-    Child child;
+    ks::test::Child child;
     child.pid = ::fork();
     ASSERT_GE(child.pid, 0);
     if (child.pid == 0) {
@@ -391,14 +361,14 @@ TEST(StoreFitFiles, SigkillMidInsertNeverLeavesAFitWithoutItsFiles) {
     ::close(fds[1]);
     std::int64_t reported = -1;
     for (int n = 0; n < kill_after[round]; ++n)
-      ASSERT_TRUE(read_index(fds[0], reported)) << "child died early";
+      ASSERT_TRUE(ks::test::read_int64(fds[0], reported)) << "child died early";
     ::usleep(static_cast<useconds_t>(300 + round * 900));  // land inside an insert
     ASSERT_EQ(::kill(child.pid, SIGKILL), 0);
     int status = 0;
     ASSERT_EQ(::waitpid(child.pid, &status, 0), child.pid);
     child.pid = -1;
     ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) << "status " << status;
-    for (std::int64_t n; read_index(fds[0], n);) reported = n;
+    for (std::int64_t n; ks::test::read_int64(fds[0], n);) reported = n;
     ::close(fds[0]);
 
     auto store = ks::Store::open(path);

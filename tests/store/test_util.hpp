@@ -1,10 +1,13 @@
 // Shared by the store tests: temp dirs, deterministic samples, a checksum of
-// the whole database.
+// the whole database, a forked child's guard and pipe, StoreError messages.
 #pragma once
 
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -12,6 +15,7 @@
 #include <string>
 
 #include "knoblab/store/sqlite.hpp"
+#include "knoblab/store/store.hpp"
 #include "knoblab/store/types.hpp"
 
 namespace knoblab::store::test {
@@ -33,6 +37,42 @@ class TempDir {
  private:
   std::filesystem::path path_;
 };
+
+// Kills and reaps a forked child if the test bails out early.
+struct Child {
+  pid_t pid = -1;
+  ~Child() {
+    if (pid > 0) {
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, nullptr, 0);
+    }
+  }
+};
+
+// Reads one int64 a child wrote to a pipe; false once the pipe is closed.
+inline bool read_int64(int fd, std::int64_t& n) {
+  std::size_t got = 0;
+  auto* p = reinterpret_cast<char*>(&n);
+  while (got < sizeof n) {
+    const ssize_t r = ::read(fd, p + got, sizeof n - got);
+    if (r < 0 && errno == EINTR) continue;
+    if (r <= 0) return false;
+    got += static_cast<std::size_t>(r);
+  }
+  return true;
+}
+
+// The message of the StoreError f throws (a test failure if it throws none).
+template <typename F>
+std::string store_error(F&& f) {
+  try {
+    f();
+  } catch (const StoreError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no StoreError";
+  return {};
+}
 
 // Sample idx of a synthetic capture: every value recomputable from idx alone.
 inline Sample sample_at(std::int64_t idx) {
