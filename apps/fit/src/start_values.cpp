@@ -35,23 +35,18 @@ int linear_columns(ModelKind kind, double omega, double alpha, double* x) {
   return 5;
 }
 
-// Least squares over the rows with the linear columns and, when f > 0,
-// sin(fθ), cos(fθ), by the normal equations (at most 7 columns; one pass over
-// the data). Columns are scaled to unit norm first so that indicator columns
-// and accelerations of hundreds of rad/s² condition alike.
+// Least squares over the rows with the linear columns, by the normal
+// equations (at most 5 columns; one pass over the data). Columns are scaled
+// to unit norm first so that indicator columns and accelerations of hundreds
+// of rad/s² condition alike.
 Eigen::VectorXd linear_fit(ModelKind kind, const FitData& d, std::span<const std::uint32_t> rows,
-                           double f, Eigen::VectorXd* residual) {
-  constexpr int kMax = 7;
-  double x[kMax + 1];
-  const int nlin = linear_columns(kind, 0.0, 0.0, x);
-  const int ncol = nlin + (f > 0 ? 2 : 0);
+                           Eigen::VectorXd* residual) {
+  constexpr int kMax = 5;
+  double x[kMax];
+  const int ncol = linear_columns(kind, 0.0, 0.0, x);
   double xtx[kMax][kMax] = {}, xty[kMax] = {};
-  auto row = [&](std::uint32_t i) {
-    linear_columns(kind, d.omega[i], d.alpha[i], x);
-    if (f > 0) x[nlin] = std::sin(f * d.theta[i]), x[nlin + 1] = std::cos(f * d.theta[i]);
-  };
   for (std::uint32_t i : rows) {
-    row(i);
+    linear_columns(kind, d.omega[i], d.alpha[i], x);
     const double y = d.torque[i];
     for (int a = 0; a < ncol; ++a) {
       xty[a] += x[a] * y;
@@ -71,7 +66,7 @@ Eigen::VectorXd linear_fit(ModelKind kind, const FitData& d, std::span<const std
   if (residual) {
     residual->resize(static_cast<Eigen::Index>(rows.size()));
     for (std::size_t j = 0; j < rows.size(); ++j) {
-      row(rows[j]);
+      linear_columns(kind, d.omega[rows[j]], d.alpha[rows[j]], x);
       double fitted = 0.0;
       for (int a = 0; a < ncol; ++a) fitted += x[a] * beta(a);
       (*residual)(static_cast<Eigen::Index>(j)) = d.torque[rows[j]] - fitted;
@@ -137,7 +132,7 @@ StartValues find_start(const FitData& d, std::span<const std::uint32_t> rows,
 
   // Step 1: the linear part alone, and what it leaves.
   Eigen::VectorXd residual;
-  const Eigen::VectorXd beta0 = linear_fit(opt.model, d, rows, 0.0, &residual);
+  const Eigen::VectorXd beta0 = linear_fit(opt.model, d, rows, &residual);
 
   double lo = d.theta[rows[0]], hi = lo;
   for (std::uint32_t i : rows) lo = std::min(lo, d.theta[i]), hi = std::max(hi, d.theta[i]);

@@ -14,8 +14,10 @@
 //  2. The peak must stand out of the periodogram's noise floor (false-alarm
 //     probability < 1e-4) or the knob has no detents and the detent term is
 //     left out (A = 0, P and S not fitted).
-//  3. Linear least squares at that P gives every other starting value;
-//     Levenberg–Marquardt then refines all parameters jointly.
+//  3. The detent start (A, S) is the periodogram's sinusoid at the peak, the
+//     others come from step 1's linear fit; Levenberg–Marquardt then refines
+//     all parameters jointly, over position cells (position_cells.hpp) unless
+//     FitOptions::compress is off.
 //  4. The Karnopp stick band (Eq. 7) is estimated from the friction residual
 //     near zero velocity; samples inside it do not obey the sliding law, so
 //     the fit is repeated without them.
