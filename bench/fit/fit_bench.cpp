@@ -293,46 +293,37 @@ Verdict compare(const std::vector<double>& pk, const std::vector<double>& ps,
   return v;
 }
 
-// --breakdown: where fit_knob's time goes, from the public options alone.
-// max_iterations = 0 leaves Ceres one evaluation at the start; with the
-// stick band off, (a) − (b) is the iterations and stick band, (b) − (c) the
-// start-value search, and (c) Ceres' setup, one evaluation and the
-// covariance with the summary figures.
-json breakdown(const fit::FitData& d, const std::vector<double>& solution, int repeats) {
-  fit::FitOptions full;
-  fit::FitOptions search = full;
-  search.max_iterations = 0;
-  search.stick_band = false;
-  fit::FitOptions rest = search;
-  rest.start = solution;
-  struct Case {
+// --breakdown: where fit_knob's time goes, from the phase clock it keeps
+// (FitResult::phases), each phase's median over the repeats.
+json breakdown(const fit::FitData& d, int repeats) {
+  std::vector<fit::FitPhases> runs;
+  for (int k = 0; k < std::max(1, repeats); ++k) runs.push_back(fit::fit_knob(d).phases);
+  struct Phase {
     const char* name;
     const char* what;
-    const fit::FitOptions* opt;
+    double fit::FitPhases::*field;
   };
-  const Case cases[] = {
-      {"full", "(a) the benchmark's fit", &full},
-      {"search_only", "(b) search, 0 iterations, no stick band", &search},
-      {"no_search", "(c) start given, 0 iterations, no stick band", &rest},
+  const Phase phases[] = {
+      {"start", "moving samples, linear fit, detent search", &fit::FitPhases::start},
+      {"cells", "building and factoring the position cells", &fit::FitPhases::cells},
+      {"solve", "Levenberg-Marquardt (Ceres), all runs", &fit::FitPhases::solve},
+      {"stick_band", "Eq. 7 estimate, leaving the band out", &fit::FitPhases::stick_band},
+      {"trim", "robust scale, leaving outliers out", &fit::FitPhases::trim},
+      {"covariance", "sandwich covariance, CIs, torque band, summary", &fit::FitPhases::covariance},
   };
-  std::cout << "\nknoblab phases (median of " << repeats << " wall times)\n";
+  std::cout << "\nknoblab phases (median of " << runs.size() << " fits, wall time)\n";
   json out = json::object();
-  std::vector<double> m;
-  for (const Case& c : cases) {
-    Timing t;
-    timed(repeats, t, [&] { return fit::fit_knob(d, *c.opt); });
-    m.push_back(t.median_s());
-    std::cout << "  " << pad(c.name, 14) << fmt("%9.4f s", m.back())
-              << fmt("  cpu %8.4f s  ", t.cpu_median_s()) << c.what << "\n";
-    out[c.name] = {{"median_s", m.back()}, {"cpu_median_s", t.cpu_median_s()}, {"what", c.what}};
+  double total = 0.0;
+  for (const Phase& p : phases) {
+    std::vector<double> t;
+    for (const fit::FitPhases& r : runs) t.push_back(r.*(p.field));
+    std::nth_element(t.begin(), t.begin() + static_cast<std::ptrdiff_t>(t.size() / 2), t.end());
+    const double med = t[t.size() / 2];
+    total += med;
+    std::cout << "  " << pad(p.name, 12) << fmt("%8.2f ms  ", 1e3 * med) << p.what << "\n";
+    out[p.name] = {{"median_s", med}, {"what", p.what}};
   }
-  const double t_search = m[1] - m[2], t_solve = m[0] - m[1], t_rest = m[2];
-  std::cout << "  ≈ start-value search " << fmt("%.4f s", t_search)
-            << ", Levenberg–Marquardt iterations + stick band " << fmt("%.4f s", t_solve)
-            << ", setup + one evaluation + covariance " << fmt("%.4f s", t_rest) << "\n";
-  out["search_s"] = t_search;
-  out["iterations_and_stick_band_s"] = t_solve;
-  out["setup_and_covariance_s"] = t_rest;
+  std::cout << "  " << pad("sum", 12) << fmt("%8.2f ms", 1e3 * total) << "\n";
   return out;
 }
 
@@ -490,7 +481,7 @@ int run(const Options& o) {
     figures["target"] = {{"ratio", kTargetRatio}, {"met", met}};
   }
 
-  if (o.breakdown) figures["breakdown"] = breakdown(d, r.params, o.repeats);
+  if (o.breakdown) figures["breakdown"] = breakdown(d, o.repeats);
 
   if (!o.json_path.empty()) {
     std::ofstream f(o.json_path);

@@ -106,8 +106,11 @@ void canonical_detents(std::vector<double>& p) {
 // does not explain, all at a few positions (where the sweep turns), which a
 // periodogram over position would take for detents.
 std::vector<std::uint32_t> moving_rows(const FitData& d, std::span<const std::uint32_t> rows) {
-  std::vector<double> speed(rows.size());
-  for (std::size_t j = 0; j < rows.size(); ++j) speed[j] = std::abs(d.omega[rows[j]]);
+  // The strided rows' speeds: what strided_quantile would take of all of them.
+  const std::size_t stride = detail::summary_stride(rows.size());
+  std::vector<double> speed;
+  speed.reserve(rows.size() / stride + 1);
+  for (std::size_t j = 0; j < rows.size(); j += stride) speed.push_back(std::abs(d.omega[rows[j]]));
   const double threshold = 0.1 * detail::strided_quantile(speed, 0.95);
   std::vector<std::uint32_t> kept;
   kept.reserve(rows.size());
@@ -119,40 +122,48 @@ std::vector<std::uint32_t> moving_rows(const FitData& d, std::span<const std::ui
   return kept;
 }
 
-// Per-sample residuals (model − measured) and the velocity part of the
-// model, at p, for the rows.
-struct RowValues {
-  std::vector<double> residual, velocity_part;
-};
-RowValues evaluate(const Residuals& res, ModelKind kind, std::span<const std::uint32_t> rows,
-                   const std::vector<double>& p) {
-  RowValues out;
-  out.residual.resize(rows.size());
-  out.velocity_part.resize(rows.size());
-  if (res.cells) {
-    detail::evaluate_cells(kind, *res.cells, rows, p.data(), out.residual, {}, out.velocity_part);
-    return out;
+// Residuals (model − measured) and velocity parts of single rows at fixed
+// parameters: through the cells, or sample by sample.
+class RowModel {
+ public:
+  RowModel(const Residuals& res, ModelKind kind, const std::vector<double>& p)
+      : d_(res.d), cells_(res.cells), thesis_(detail::as_thesis(kind, p.data())) {
+    if (cells_) cell_model_ = detail::cell_model(kind, *cells_, p.data(), false);
   }
-  const model::ThesisModel<double> m = detail::as_thesis(kind, p.data());
-  for (std::size_t j = 0; j < rows.size(); ++j) {
-    const auto parts = m.parts(res.d->kinematics(rows[j]));
-    out.residual[j] = parts.total() - res.d->torque[rows[j]];
-    out.velocity_part[j] = parts.vel;
+  double residual(std::uint32_t i) const {
+    if (cells_) [[likely]] return cell_model_.residual(i);
+    return thesis_.torque(d_->kinematics(i)) - d_->torque[i];
   }
-  return out;
-}
+  double velocity_part(std::uint32_t i) const {
+    if (cells_) [[likely]] return cell_model_.velocity_part(i);
+    return thesis_.parts(d_->kinematics(i)).vel;
+  }
 
-// Rows whose residual lies within five robust standard deviations.
+ private:
+  const FitData* d_;
+  const detail::PositionCells* cells_;
+  model::ThesisModel<double> thesis_;
+  detail::CellModel cell_model_;
+};
+
+// Rows whose residual, residual(j) for rows[j], lies within five robust
+// standard deviations. The median and MAD come from evenly strided rows, as
+// strided_quantile takes them.
+template <class Residual>
 std::vector<std::uint32_t> within_robust_range(std::span<const std::uint32_t> rows,
-                                               std::span<const double> e) {
+                                               const Residual& residual) {
+  const std::size_t stride = detail::summary_stride(rows.size());
+  std::vector<double> e;
+  e.reserve(rows.size() / stride + 1);
+  for (std::size_t j = 0; j < rows.size(); j += stride) e.push_back(residual(j));
   const double med = detail::strided_quantile(e, 0.5);
-  std::vector<double> dev(e.size());
-  for (std::size_t j = 0; j < e.size(); ++j) dev[j] = std::abs(e[j] - med);
-  const double limit = 5.0 * 1.4826 * detail::strided_quantile(dev, 0.5);
+  for (double& x : e) x = std::abs(x - med);
+  const double limit = 5.0 * 1.4826 * detail::strided_quantile(e, 0.5);
+  if (!(limit > 0)) return {rows.begin(), rows.end()};
   std::vector<std::uint32_t> kept;
   kept.reserve(rows.size());
   for (std::size_t j = 0; j < rows.size(); ++j) {
-    if (!(limit > 0) || dev[j] <= limit) kept.push_back(rows[j]);
+    if (std::abs(residual(j) - med) <= limit) kept.push_back(rows[j]);
   }
   return kept;
 }
@@ -172,10 +183,25 @@ void keep_only(Residuals& res, detail::PositionCells* cells, std::vector<std::ui
   res.rows = rows;
 }
 
+// Wall time since the last call, seconds: fit_knob's phase clock.
+class Lap {
+ public:
+  double operator()() {
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return s;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
 }  // namespace
 
 FitResult fit_knob(const FitData& d, const FitOptions& opt) {
   const auto t0 = std::chrono::steady_clock::now();
+  Lap lap;
   if (d.size() < 16) throw FitDataError("too few samples to fit");
   const std::size_t n = static_cast<std::size_t>(param_count(opt.model));
   std::vector<std::uint32_t> rows(d.size());
@@ -200,6 +226,7 @@ FitResult fit_knob(const FitData& d, const FitOptions& opt) {
     r.detent_power = sv.power;
     r.detent_false_alarm = sv.false_alarm;
   }
+  r.phases.start = lap();
   r.fitted.assign(n, true);
   if (!r.detents) r.fitted[a] = r.fitted[a + 1] = r.fitted[a + 2] = false;
   if (rows.size() <= n + 1) throw FitDataError("too few samples for the model's parameters");
@@ -214,18 +241,19 @@ FitResult fit_knob(const FitData& d, const FitOptions& opt) {
     res.cells = &*cells;
   }
   detail::PositionCells* cp = cells ? &*cells : nullptr;
+  r.phases.cells = lap();
 
   Solved s = solve(res, opt, start, r.fitted, bounds);
   r.iterations = s.iterations;
+  r.phases.solve = lap();
+  // Residuals (measured − model) at s.params, while nothing changed them.
+  std::vector<double> e;
   if (opt.stick_band && opt.model == ModelKind::Thesis6) {
-    const RowValues all = evaluate(res, opt.model, rows, s.params);
-    std::vector<double> speed(rows.size()), tau_vel(rows.size()), e(rows.size());
-    for (std::size_t j = 0; j < rows.size(); ++j) {
-      speed[j] = std::abs(d.omega[rows[j]]);
-      e[j] = -all.residual[j];
-      tau_vel[j] = e[j] + all.velocity_part[j];
-    }
-    r.stick = detail::estimate_stick_band(speed, tau_vel, e);
+    const RowModel model(res, opt.model, s.params);
+    e.resize(rows.size());
+    for (std::size_t j = 0; j < rows.size(); ++j) e[j] = -model.residual(rows[j]);
+    r.stick = detail::estimate_stick_band(
+        d, rows, e, [&](std::size_t j) { return model.velocity_part(rows[j]); });
     if (r.stick) {
       // The sliding law does not hold inside the band: fit without it.
       std::vector<std::uint32_t> kept;
@@ -234,37 +262,44 @@ FitResult fit_knob(const FitData& d, const FitOptions& opt) {
         if (std::abs(d.omega[i]) >= r.stick->dv) kept.push_back(i);
       }
       if (kept.size() > 10 * n) {
+        e.clear();
         keep_only(res, cp, rows, std::move(kept));
+        r.phases.stick_band = lap();
         s = solve(res, opt, s.params, r.fitted, bounds);
         r.iterations += s.iterations;
+        r.phases.solve += lap();
       }
     }
+    r.phases.stick_band += lap();
   }
   // Breakaway transients: just outside the band a compliant gripper rings,
   // with accelerations far above the sweep's, so a handful of samples the
   // sliding law cannot describe would set M. Leave out what lies beyond five
   // robust standard deviations (MAD) and fit once more.
   if (opt.trim_outliers) {
-    const RowValues now = evaluate(res, opt.model, rows, s.params);
-    std::vector<std::uint32_t> kept = within_robust_range(rows, now.residual);
+    std::vector<std::uint32_t> kept;
+    if (e.size() == rows.size()) {
+      kept = within_robust_range(rows, [&](std::size_t j) { return e[j]; });
+    } else {
+      const RowModel model(res, opt.model, s.params);
+      kept = within_robust_range(rows, [&](std::size_t j) { return model.residual(rows[j]); });
+    }
     r.outliers = rows.size() - kept.size();
     if (r.outliers > 0 && kept.size() > 10 * n) {
       keep_only(res, cp, rows, std::move(kept));
+      r.phases.trim = lap();
       s = solve(res, opt, s.params, r.fitted, bounds);
       r.iterations += s.iterations;
+      r.phases.solve += lap();
     }
+    r.phases.trim += lap();
   }
   if (r.detents) canonical_detents(s.params);
   r.params = s.params;
 
-  detail::CovarianceEstimate cov;
-  if (cells) {
-    std::vector<double> residuals(rows.size()), jacobian(rows.size() * n);
-    detail::evaluate_cells(opt.model, *cells, rows, r.params.data(), residuals, jacobian);
-    cov = detail::covariance_from_rows(std::move(residuals), std::move(jacobian), n, r.fitted);
-  } else {
-    cov = detail::estimate_covariance(opt.model, d, rows, r.params.data(), r.fitted);
-  }
+  const detail::CovarianceEstimate cov =
+      cells ? detail::covariance_from_cells(opt.model, *cells, rows, r.params.data(), r.fitted)
+            : detail::estimate_covariance(opt.model, d, rows, r.params.data(), r.fitted);
   r.covariance = cov.covariance;
   r.se = cov.se;
   r.t95 = cov.t95;
@@ -289,16 +324,8 @@ FitResult fit_knob(const FitData& d, const FitOptions& opt) {
   r.fit_percent = tss > 0 ? 100.0 * (1.0 - std::sqrt(cov.rss / tss)) : 0.0;
   r.bic = m * std::log(cov.rss / m) + static_cast<double>(k_free) * std::log(m);
   r.residual_sd = std::sqrt(cov.rss / (m - static_cast<double>(k_free)));
-  double band = 0.0;
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const double* J = cov.jacobian.data() + i * n;
-    double v = 0.0;
-    for (std::size_t p = 0; p < n; ++p) {
-      for (std::size_t q = 0; q < n; ++q) v += J[p] * r.covariance[p * n + q] * J[q];
-    }
-    band += r.t95 * std::sqrt(std::max(0.0, v));
-  }
-  r.ci95_torque_Nm = band / m;
+  r.ci95_torque_Nm = r.t95 * cov.curve_sd_mean;
+  r.phases.covariance = lap();
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }

@@ -38,6 +38,32 @@ void add_outer(CellMatrix& g, const std::array<double, kCellCols>& z, double sig
   }
 }
 
+// Σ zzᵀ (upper triangle) over a run of samples in one cell, in local sums:
+// a sweep stays in a cell for tens of samples, and summing into the cell's
+// matrix in memory would chain every add through a store and a load.
+struct RunSums {
+  std::array<double, kCellCols*(kCellCols + 1) / 2> s{};
+  std::uint32_t count = 0;
+
+  void add(const std::array<double, kCellCols>& z) {
+    std::size_t k = 0;
+#pragma GCC unroll 8
+    for (std::size_t a = 0; a < kCellCols; ++a) {
+#pragma GCC unroll 8
+      for (std::size_t b = a; b < kCellCols; ++b) s[k++] += z[a] * z[b];
+    }
+    ++count;
+  }
+  void flush_into(Cell& c) {
+    std::size_t k = 0;
+    for (int a = 0; a < kCellCols; ++a) {
+      for (int b = a; b < kCellCols; ++b) c.gram(a, b) += s[k++];
+    }
+    c.count += count;
+    *this = {};
+  }
+};
+
 }  // namespace
 
 PositionCells::PositionCells(const FitData& d, std::span<const std::uint32_t> rows,
@@ -49,29 +75,32 @@ PositionCells::PositionCells(const FitData& d, std::span<const std::uint32_t> ro
   bins_ = max_width > 0 ? static_cast<std::size_t>(std::ceil(range / max_width)) : 1;
   bins_ = std::clamp<std::size_t>(bins_, 1, 1u << 20);
   half_ = range / static_cast<double>(bins_) / 2;
+  inv_half_ = 1.0 / half_;
   lo_ = lo;
   cells_.resize(bins_ * 3);
+  centers_.resize(bins_ * 3);
   for (std::size_t b = 0; b < bins_; ++b) {
     for (int g = 0; g < 3; ++g) {
       Cell& c = cells_[b * 3 + static_cast<std::size_t>(g)];
       c.center = lo_ + (2 * static_cast<double>(b) + 1) * half_;
       c.group = g - 1;
+      centers_[b * 3 + static_cast<std::size_t>(g)] = c.center;
     }
   }
+  const double bins_per_rad = 1.0 / (2 * half_);
+  RunSums run;
+  std::uint32_t current = kNone;
   for (std::uint32_t i : rows) {
-    const auto b = std::min(static_cast<std::size_t>((d.theta[i] - lo_) / (2 * half_)), bins_ - 1);
+    const auto b = std::min(static_cast<std::size_t>((d.theta[i] - lo_) * bins_per_rad), bins_ - 1);
     const auto c = static_cast<std::uint32_t>(b * 3 + static_cast<std::size_t>(group_of(d.omega[i]) + 1));
     cell_of_[i] = c;
-    add_outer(cells_[c].gram, z(i), 1.0);
-    ++cells_[c].count;
+    if (c != current) {
+      if (current != kNone) run.flush_into(cells_[current]);
+      current = c;
+    }
+    run.add(z(i));
   }
-}
-
-std::array<double, kCellCols> PositionCells::z(std::uint32_t i) const {
-  const Cell& c = cells_[cell_of_[i]];
-  const double u = (d_->theta[i] - c.center) / half_;
-  const double u2 = u * u;
-  return {d_->torque[i], d_->alpha[i], d_->omega[i], 1.0, u, u2, u2 * u, u2 * u2};
+  if (current != kNone) run.flush_into(cells_[current]);
 }
 
 void PositionCells::remove(std::uint32_t row) {
@@ -99,58 +128,55 @@ void PositionCells::factor() {
 namespace {
 
 template <int N>
-void evaluate_cells_n(ModelKind kind, const PositionCells& cells,
-                      std::span<const std::uint32_t> rows, const double* p,
-                      std::span<double> residuals, std::span<double> jacobian,
-                      std::span<double> velocity_part) {
+CellModel cell_model_n(ModelKind kind, const PositionCells& cells, const double* p,
+                       bool derivatives) {
   using Jet = ceres::Jet<double, N>;
   std::array<Jet, N> pj;
   for (int k = 0; k < N; ++k) pj[static_cast<std::size_t>(k)] = Jet(p[k], k);
-  // v and ∂v/∂p of every cell, once.
   const std::size_t nc = cells.cells().size();
-  std::vector<double> v(nc * kCellCols), dv(nc * kCellCols * N), fr(nc * 2);
+  CellModel out;
+  out.rows = cells.rows();
+  out.n = derivatives ? N : 0;
+  out.v.resize(nc * kCellCols);
+  out.dv.resize(nc * kCellCols * out.n);
+  out.friction.resize(nc * 2);
   for (std::size_t c = 0; c < nc; ++c) {
     Jet vj[kCellCols], fj[2];
     cell_vector(kind, pj.data(), cells.cells()[c], cells.half_width(), vj, fj);
-    for (int a = 0; a < kCellCols; ++a) {
-      v[c * kCellCols + static_cast<std::size_t>(a)] = vj[a].a;
-      for (int k = 0; k < N; ++k) {
-        dv[(c * kCellCols + static_cast<std::size_t>(a)) * N + static_cast<std::size_t>(k)] =
-            vj[a].v[k];
-      }
+    for (std::size_t a = 0; a < kCellCols; ++a) {
+      out.v[c * kCellCols + a] = vj[a].a;
+      for (std::size_t k = 0; k < out.n; ++k) out.dv[(c * kCellCols + a) * out.n + k] = vj[a].v[k];
     }
-    fr[2 * c] = fj[0].a, fr[2 * c + 1] = fj[1].a;
+    out.friction[2 * c] = fj[0].a, out.friction[2 * c + 1] = fj[1].a;
   }
-  for (std::size_t j = 0; j < rows.size(); ++j) {
-    const std::uint32_t i = rows[j];
-    const std::size_t c = cells.cell_of(i);
-    const std::array<double, kCellCols> z = cells.z(i);
-    const double* vc = v.data() + c * kCellCols;
-    double r = 0.0;
-    for (int a = 0; a < kCellCols; ++a) r += z[static_cast<std::size_t>(a)] * vc[a];
-    residuals[j] = r;
-    if (!jacobian.empty()) {
-      double* J = jacobian.data() + j * N;
-      const double* dc = dv.data() + c * kCellCols * N;
-      for (int k = 0; k < N; ++k) J[k] = 0.0;
-      for (int a = 1; a < kCellCols; ++a) {  // z₀ = τ meets v₀ = −1: no derivative
-        const double za = z[static_cast<std::size_t>(a)];
-        for (int k = 0; k < N; ++k) J[k] += za * dc[a * N + k];
-      }
-    }
-    if (!velocity_part.empty()) velocity_part[j] = fr[2 * c] * z[2] + fr[2 * c + 1];
-  }
+  return out;
 }
 
 }  // namespace
 
+CellModel cell_model(ModelKind kind, const PositionCells& cells, const double* p,
+                     bool derivatives) {
+  return kind == ModelKind::Thesis6 ? cell_model_n<kThesisParams>(kind, cells, p, derivatives)
+                                    : cell_model_n<kRenderParams>(kind, cells, p, derivatives);
+}
+
 void evaluate_cells(ModelKind kind, const PositionCells& cells, std::span<const std::uint32_t> rows,
                     const double* p, std::span<double> residuals, std::span<double> jacobian,
                     std::span<double> velocity_part) {
-  if (kind == ModelKind::Thesis6) {
-    evaluate_cells_n<kThesisParams>(kind, cells, rows, p, residuals, jacobian, velocity_part);
-  } else {
-    evaluate_cells_n<kRenderParams>(kind, cells, rows, p, residuals, jacobian, velocity_part);
+  const CellModel m = cell_model(kind, cells, p, !jacobian.empty());
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    const std::uint32_t i = rows[j];
+    residuals[j] = m.residual(i);
+    if (!jacobian.empty()) {
+      const std::array<double, kCellCols> z = m.rows.z(i);
+      const double* dc = m.dv.data() + std::size_t{cells.cell_of(i)} * kCellCols * m.n;
+      double* J = jacobian.data() + j * m.n;
+      for (std::size_t k = 0; k < m.n; ++k) J[k] = 0.0;
+      for (std::size_t a = 1; a < kCellCols; ++a) {  // z₀ = τ meets v₀ = −1: no derivative
+        for (std::size_t k = 0; k < m.n; ++k) J[k] += z[a] * dc[a * m.n + k];
+      }
+    }
+    if (!velocity_part.empty()) velocity_part[j] = m.velocity_part(i);
   }
 }
 

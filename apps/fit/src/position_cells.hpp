@@ -50,6 +50,23 @@ struct Cell {
   CellMatrix root = CellMatrix::Zero();  // R with RᵀR = gram (factor())
 };
 
+// Flat pointers to what a row's data vector needs, for tight loops over rows
+// (a copy in the loop re-reads nothing through the containers).
+struct CellRows {
+  const double *theta = nullptr, *omega = nullptr, *alpha = nullptr, *torque = nullptr;
+  const std::uint32_t* cell_of = nullptr;
+  const double* center = nullptr;  // per cell
+  double inv_half = 0.0;
+
+  // Row i's position within its cell, scaled to [−1, 1].
+  double u(std::uint32_t i) const { return (theta[i] - center[cell_of[i]]) * inv_half; }
+  // Row i's data vector z = (τ, α, ω, u⁰ … u⁴).
+  std::array<double, kCellCols> z(std::uint32_t i) const {
+    const double x = u(i), x2 = x * x;
+    return {torque[i], alpha[i], omega[i], 1.0, x, x2, x2 * x, x2 * x2};
+  }
+};
+
 class PositionCells {
  public:
   // Cells of width ≤ max_width over the rows' positions (one bin when
@@ -64,18 +81,24 @@ class PositionCells {
   void factor();
 
   const std::vector<Cell>& cells() const { return cells_; }
+  const FitData& data() const { return *d_; }
   double half_width() const { return half_; }
   // The cell and position within it (u in [−1, 1]) of row i; cell_of is
   // kNone for a row that was never added.
   static constexpr std::uint32_t kNone = 0xffffffffu;
   std::uint32_t cell_of(std::uint32_t i) const { return cell_of_[i]; }
-  std::array<double, kCellCols> z(std::uint32_t i) const;
+  CellRows rows() const {
+    return {d_->theta.data(), d_->omega.data(), d_->alpha.data(), d_->torque.data(),
+            cell_of_.data(), centers_.data(), inv_half_};
+  }
+  std::array<double, kCellCols> z(std::uint32_t i) const { return rows().z(i); }
 
  private:
   const FitData* d_;
-  double lo_ = 0.0, half_ = 0.0;
+  double lo_ = 0.0, half_ = 0.0, inv_half_ = 0.0;
   std::size_t bins_ = 1;
   std::vector<Cell> cells_;                // bins_ × 3 groups, empty ones kept
+  std::vector<double> centers_;            // per cell, apart from the bulky Cell
   std::vector<std::uint32_t> cell_of_;     // per row of d
   std::vector<bool> removed_;              // per row of d
 };
@@ -115,12 +138,41 @@ void cell_vector(ModelKind kind, const T* p, const Cell& c, double half, T* v,
   if (friction) friction[0] = v[2], friction[1] = intercept;
 }
 
+// Every cell's model vector at one parameter vector p, for evaluating single
+// rows: v (cells × 8), when asked ∂v/∂p (cells × 8 × n, row-major per cell),
+// and each cell's friction slope and intercept (B_g, c_g).
+struct CellModel {
+  CellRows rows;
+  std::size_t n = 0;  // parameters; 0: no derivatives
+  std::vector<double> v, dv, friction;
+
+  // Row i's residual (model − measured) and velocity part B_g·ω + c_g.
+  double residual(std::uint32_t i) const {
+    const double* vc = v.data() + std::size_t{rows.cell_of[i]} * kCellCols;
+    const double u = rows.u(i);  // z·v with the u powers by Horner
+    return vc[0] * rows.torque[i] + vc[1] * rows.alpha[i] + vc[2] * rows.omega[i] +
+           (vc[3] + u * (vc[4] + u * (vc[5] + u * (vc[6] + u * vc[7]))));
+  }
+  double velocity_part(std::uint32_t i) const {
+    const double* f = friction.data() + 2 * std::size_t{rows.cell_of[i]};
+    return f[0] * rows.omega[i] + f[1];
+  }
+};
+CellModel cell_model(ModelKind kind, const PositionCells& cells, const double* p,
+                     bool derivatives);
+
 // Residuals (model − measured) and, when `jacobian` is not empty, Jacobian
 // rows (rows.size() × n) of the given rows at p, through the cells; also the
 // velocity part B_g·ω + c_g of each row when `velocity_part` is not empty.
 void evaluate_cells(ModelKind kind, const PositionCells& cells, std::span<const std::uint32_t> rows,
                     const double* p, std::span<double> residuals, std::span<double> jacobian,
                     std::span<double> velocity_part = {});
+
+// The covariance (covariance.cpp) through the cells: JᵀJ from the cells'
+// Gram matrices, the scores and the curve's band in one pass each over rows.
+CovarianceEstimate covariance_from_cells(ModelKind kind, const PositionCells& cells,
+                                         std::span<const std::uint32_t> rows, const double* p,
+                                         const std::vector<bool>& fitted);
 
 struct CellResidual {
   ModelKind kind;

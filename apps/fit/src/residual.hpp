@@ -6,6 +6,7 @@
 #include <ceres/ceres.h>
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 
@@ -90,8 +91,9 @@ struct CovarianceEstimate {
   double t95 = 0.0;
   double inflation = 1.0;
   double rss = 0.0;
-  std::vector<double> jacobian;    // rows × N, kept for the torque band
-  std::vector<double> residuals;
+  // Mean of the fitted torque's SD √(J·C·Jᵀ) over evenly strided rows (as
+  // summary_stride takes them): a summary figure, not a per-row band.
+  double curve_sd_mean = 0.0;
 };
 CovarianceEstimate estimate_covariance(ModelKind kind, const FitData& data,
                                        std::span<const std::uint32_t> rows, const double* p,
@@ -101,15 +103,21 @@ CovarianceEstimate covariance_from_rows(std::vector<double> residuals,
                                         std::vector<double> jacobian, std::size_t n,
                                         const std::vector<bool>& fitted);
 
-// Stick band from the sliding-law residual near zero velocity (stick_band.cpp):
-// per sample |θ̇|, raw τ_vel = τ − τ_acc − τ_pos and the sliding law's
-// residual τ_vel − τ̂_vel.
-std::optional<StickBand> estimate_stick_band(std::span<const double> speed,
-                                             std::span<const double> tau_vel,
-                                             std::span<const double> sliding_residual);
+// Stick band from the sliding-law residual near zero velocity (stick_band.cpp).
+// rows: the fitted rows of d; e: their sliding-law residuals, measured − model
+// (raw τ_vel − τ̂_vel); velocity_part(j): the model's τ̂_vel of rows[j], asked
+// only of the rows inside the band (raw τ_vel = e + τ̂_vel gives D±).
+std::optional<StickBand> estimate_stick_band(const FitData& d,
+                                             std::span<const std::uint32_t> rows,
+                                             std::span<const double> e,
+                                             const std::function<double(std::size_t)>& velocity_part);
 
 // The q-quantile of at most ~20 000 evenly strided values of v (robust
 // scales and thresholds do not need every one of 10⁵ samples).
 double strided_quantile(std::span<const double> v, double q);
+// The stride strided_quantile takes over n values (a caller that computes
+// only every stride-th value gets the same quantile); summary figures over
+// rows use it too.
+inline std::size_t summary_stride(std::size_t n) { return n / 20000 > 1 ? n / 20000 : 1; }
 
 }  // namespace knoblab::fit::detail

@@ -1,6 +1,7 @@
 // Starting values with no hand-given guess (see knob_fit.hpp, steps 1–3).
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -18,82 +19,137 @@ constexpr double kFalseAlarmLimit = 1e-4;
 // turns): the peak must explain at least this share of it.
 constexpr double kMinDetentShare = 0.25;
 
-// Regressor columns of the model's linear part (everything but the detents),
-// in parameter order, for one sample.
-int linear_columns(ModelKind kind, double omega, double alpha, double* x) {
-  if (kind == ModelKind::Render4) {
-    x[0] = alpha;
-    x[1] = omega;
-    return 2;
+// Within one direction of motion (ω < 0, = 0, > 0) every linear column is
+// α, ω or 1 times a constant, so the normal equations need only each
+// direction's sums of the products of (α, ω, 1, τ).
+enum Base : std::size_t { kAlpha, kOmega, kOne, kTorque };
+constexpr std::size_t kBases = 4;
+struct DirectionSums {
+  std::array<std::array<double, kBases>, kBases> s{};  // symmetric
+};
+
+// Which base column a linear column is, and its factor in each direction
+// (−, 0, +): linear_columns in this form.
+struct ColumnForm {
+  Base base;
+  std::array<double, 3> factor;
+};
+std::vector<ColumnForm> column_forms(ModelKind kind) {
+  if (kind == ModelKind::Render4) return {{kAlpha, {1, 1, 1}}, {kOmega, {1, 1, 1}}};
+  return {{kAlpha, {1, 1, 1}},   // M_acc
+          {kOne, {-1, 0, 0}},    // −C_vel_neg
+          {kOmega, {1, 0, 0}},   // B_vel_neg
+          {kOne, {0, 0, 1}},     // C_vel_pos
+          {kOmega, {0, 0, 1}}};  // B_vel_pos
+}
+
+// The sums, summed locally while the rows keep their direction (they do for
+// hundreds of rows), so no add waits on a store.
+std::array<DirectionSums, 3> direction_sums(const FitData& d, std::span<const std::uint32_t> rows) {
+  std::array<DirectionSums, 3> out{};
+  std::array<double, 9> run{};  // αα αω α ατ ωω ω ωτ 1 τ
+  int current = -1;
+  auto flush = [&] {
+    if (current < 0) return;
+    auto& t = out[static_cast<std::size_t>(current)].s;
+    const auto add = [&](Base p, Base q, double v) {
+      t[p][q] += v;
+      if (p != q) t[q][p] += v;
+    };
+    add(kAlpha, kAlpha, run[0]), add(kAlpha, kOmega, run[1]), add(kAlpha, kOne, run[2]);
+    add(kAlpha, kTorque, run[3]), add(kOmega, kOmega, run[4]), add(kOmega, kOne, run[5]);
+    add(kOmega, kTorque, run[6]), add(kOne, kOne, run[7]), add(kOne, kTorque, run[8]);
+    run = {};
+  };
+  for (std::uint32_t i : rows) {
+    const double w = d.omega[i], a = d.alpha[i], y = d.torque[i];
+    const int g = (w > 0) - (w < 0) + 1;
+    if (g != current) flush(), current = g;
+    run[0] += a * a, run[1] += a * w, run[2] += a, run[3] += a * y;
+    run[4] += w * w, run[5] += w, run[6] += w * y, run[7] += 1, run[8] += y;
   }
-  const bool neg = omega < 0, pos = omega > 0;
-  x[0] = alpha;
-  x[1] = neg ? -1.0 : 0.0;  // −C_vel_neg
-  x[2] = neg ? omega : 0.0;
-  x[3] = pos ? 1.0 : 0.0;
-  x[4] = pos ? omega : 0.0;
-  return 5;
+  flush();
+  return out;
 }
 
 // Least squares over the rows with the linear columns, by the normal
-// equations (at most 5 columns; one pass over the data). Columns are scaled
-// to unit norm first so that indicator columns and accelerations of hundreds
-// of rad/s² condition alike.
-Eigen::VectorXd linear_fit(ModelKind kind, const FitData& d, std::span<const std::uint32_t> rows,
-                           Eigen::VectorXd* residual) {
-  constexpr int kMax = 5;
-  double x[kMax];
-  const int ncol = linear_columns(kind, 0.0, 0.0, x);
-  double xtx[kMax][kMax] = {}, xty[kMax] = {};
-  for (std::uint32_t i : rows) {
-    linear_columns(kind, d.omega[i], d.alpha[i], x);
-    const double y = d.torque[i];
-    for (int a = 0; a < ncol; ++a) {
-      xty[a] += x[a] * y;
-      for (int b = a; b < ncol; ++b) xtx[a][b] += x[a] * x[b];
+// equations. Columns are scaled to unit norm first so that indicator columns
+// and accelerations of hundreds of rad/s² condition alike.
+Eigen::VectorXd linear_fit(ModelKind kind, const FitData& d, std::span<const std::uint32_t> rows) {
+  const std::vector<ColumnForm> cols = column_forms(kind);
+  const std::array<DirectionSums, 3> sums = direction_sums(d, rows);
+  const auto sum = [&](std::size_t g, Base p, Base q) { return sums[g].s[p][q]; };
+  const auto nc = static_cast<Eigen::Index>(cols.size());
+  Eigen::MatrixXd xtx = Eigen::MatrixXd::Zero(nc, nc);
+  Eigen::VectorXd xty = Eigen::VectorXd::Zero(nc);
+  for (Eigen::Index a = 0; a < nc; ++a) {
+    const ColumnForm& ca = cols[static_cast<std::size_t>(a)];
+    for (std::size_t g = 0; g < 3; ++g) {
+      xty(a) += ca.factor[g] * sum(g, ca.base, kTorque);
+      for (Eigen::Index b = 0; b < nc; ++b) {
+        const ColumnForm& cb = cols[static_cast<std::size_t>(b)];
+        xtx(a, b) += ca.factor[g] * cb.factor[g] * sum(g, ca.base, cb.base);
+      }
     }
   }
-  Eigen::MatrixXd G(ncol, ncol);
-  Eigen::VectorXd g(ncol), scale(ncol);
-  for (int a = 0; a < ncol; ++a) {
-    scale(a) = xtx[a][a] > 0 ? std::sqrt(xtx[a][a]) : 1.0;  // a column with no data
+  Eigen::VectorXd scale(nc);
+  for (Eigen::Index a = 0; a < nc; ++a) {
+    scale(a) = xtx(a, a) > 0 ? std::sqrt(xtx(a, a)) : 1.0;  // a column with no data
   }
-  for (int a = 0; a < ncol; ++a) {
-    g(a) = xty[a] / scale(a);
-    for (int b = a; b < ncol; ++b) G(a, b) = G(b, a) = xtx[a][b] / (scale(a) * scale(b));
-  }
-  Eigen::VectorXd beta = G.colPivHouseholderQr().solve(g).cwiseQuotient(scale);
-  if (residual) {
-    residual->resize(static_cast<Eigen::Index>(rows.size()));
-    for (std::size_t j = 0; j < rows.size(); ++j) {
-      linear_columns(kind, d.omega[rows[j]], d.alpha[rows[j]], x);
-      double fitted = 0.0;
-      for (int a = 0; a < ncol; ++a) fitted += x[a] * beta(a);
-      (*residual)(static_cast<Eigen::Index>(j)) = d.torque[rows[j]] - fitted;
-    }
-  }
-  return beta;
+  const Eigen::MatrixXd G = scale.cwiseInverse().asDiagonal() * xtx * scale.cwiseInverse().asDiagonal();
+  const Eigen::VectorXd g = xty.cwiseQuotient(scale);
+  return G.colPivHouseholderQr().solve(g).cwiseQuotient(scale);
 }
+
+// Row i's torque less the linear part with coefficients beta: per direction
+// of motion that part is c_α·α + c_ω·ω + c_1.
+class LinearResidual {
+ public:
+  LinearResidual(ModelKind kind, const FitData& d, const Eigen::VectorXd& beta) : d_(d) {
+    const std::vector<ColumnForm> cols = column_forms(kind);
+    for (std::size_t k = 0; k < cols.size(); ++k) {
+      for (std::size_t g = 0; g < 3; ++g) {
+        coef_[g][cols[k].base] += cols[k].factor[g] * beta(static_cast<Eigen::Index>(k));
+      }
+    }
+  }
+  double operator()(std::uint32_t i) const {
+    const double w = d_.omega[i];
+    const auto& c = coef_[static_cast<std::size_t>((w > 0) - (w < 0) + 1)];
+    return d_.torque[i] - (c[kAlpha] * d_.alpha[i] + c[kOmega] * w + c[kOne]);
+  }
+
+ private:
+  const FitData& d_;
+  std::array<std::array<double, kBases>, 3> coef_{};
+};
 
 struct Binned {
   std::vector<double> theta, value;
 };
 
 // Mean residual per position bin: sorting by position (as the thesis does)
-// cuts the periodogram's cost to the bins and averages the noise down.
+// cuts the periodogram's cost to the bins and averages the noise down. A
+// sweep stays in a bin for many rows: sum locally until it leaves.
 Binned bin_by_position(const FitData& d, std::span<const std::uint32_t> rows,
-                       const Eigen::VectorXd& r, double lo, double hi, std::size_t nbins) {
+                       const LinearResidual& residual, double lo, double hi, std::size_t nbins) {
   std::vector<double> sum_t(nbins, 0.0), sum_r(nbins, 0.0);
   std::vector<std::size_t> count(nbins, 0);
-  const double w = (hi - lo) / static_cast<double>(nbins);
-  for (std::size_t j = 0; j < rows.size(); ++j) {
-    const double th = d.theta[rows[j]];
-    auto b = static_cast<std::size_t>((th - lo) / w);
-    b = std::min(b, nbins - 1);
-    sum_t[b] += th;
-    sum_r[b] += r(static_cast<Eigen::Index>(j));
-    ++count[b];
+  const double per_rad = static_cast<double>(nbins) / (hi - lo);
+  double run_t = 0.0, run_r = 0.0;
+  std::size_t run_n = 0, current = nbins;
+  auto flush = [&] {
+    if (current == nbins) return;
+    sum_t[current] += run_t, sum_r[current] += run_r, count[current] += run_n;
+    run_t = run_r = 0.0, run_n = 0;
+  };
+  for (std::uint32_t i : rows) {
+    const double th = d.theta[i];
+    const std::size_t b = std::min(static_cast<std::size_t>((th - lo) * per_rad), nbins - 1);
+    if (b != current) flush(), current = b;
+    run_t += th, run_r += residual(i), ++run_n;
   }
+  flush();
   Binned out;
   for (std::size_t b = 0; b < nbins; ++b) {
     if (count[b] == 0) continue;
@@ -131,8 +187,7 @@ StartValues find_start(const FitData& d, std::span<const std::uint32_t> rows,
   out.params.assign(static_cast<std::size_t>(n), 0.0);
 
   // Step 1: the linear part alone, and what it leaves.
-  Eigen::VectorXd residual;
-  const Eigen::VectorXd beta0 = linear_fit(opt.model, d, rows, &residual);
+  const Eigen::VectorXd beta0 = linear_fit(opt.model, d, rows);
 
   double lo = d.theta[rows[0]], hi = lo;
   for (std::uint32_t i : rows) lo = std::min(lo, d.theta[i]), hi = std::max(hi, d.theta[i]);
@@ -148,7 +203,7 @@ StartValues find_start(const FitData& d, std::span<const std::uint32_t> rows,
     const double shortest = 2 * kPi / opt.max_detents_per_rev;
     const auto wanted = static_cast<std::size_t>(std::ceil(8 * range / shortest));
     const std::size_t nbins = std::clamp<std::size_t>(std::min(wanted, rows.size() / 8), 64, 4096);
-    const Binned b = bin_by_position(d, rows, residual, lo, hi, nbins);
+    const Binned b = bin_by_position(d, rows, LinearResidual(opt.model, d, beta0), lo, hi, nbins);
     const double bin_width = range / static_cast<double>(nbins);
     const double f_lo = std::max(opt.min_detents_per_rev, kPi / range);
     const double f_hi = std::min(opt.max_detents_per_rev, kPi / (2 * bin_width));

@@ -78,6 +78,16 @@ struct StickBand {
   std::size_t samples = 0;  // samples inside the band
 };
 
+// Where fit_knob's wall time went, seconds (the benchmark's breakdown).
+struct FitPhases {
+  double start = 0.0;       // moving samples, linear fit, detent search
+  double cells = 0.0;       // building and factoring the position cells
+  double solve = 0.0;       // Levenberg–Marquardt, all runs
+  double stick_band = 0.0;  // Eq. 7 estimate and leaving the band out
+  double trim = 0.0;        // robust scale and leaving outliers out
+  double covariance = 0.0;  // covariance, intervals and summary figures
+};
+
 struct FitResult {
   ModelKind model = ModelKind::Thesis6;
   std::vector<std::string_view> names;
@@ -103,6 +113,7 @@ struct FitResult {
   double covariance_inflation = 1.0;  // sandwich vs textbook variance, mean over parameters
   int iterations = 0;
   double seconds = 0.0;
+  FitPhases phases;
 
   double value(std::string_view name) const;  // throws std::out_of_range
   std::size_t index(std::string_view name) const;
