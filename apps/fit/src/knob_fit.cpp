@@ -101,10 +101,11 @@ void canonical_detents(std::vector<double>& p) {
   if (p[a + 2] <= -std::numbers::pi) p[a + 2] += 2 * std::numbers::pi;
 }
 
-// Samples where the knob slides briskly: |θ̇| at least a tenth of the 95th
-// percentile speed. Stuck samples and reversals carry torque the sliding law
-// does not explain, all at a few positions (where the sweep turns), which a
-// periodogram over position would take for detents.
+// Rows for the detent search and starting values: where the knob slides
+// briskly, |θ̇| at least a tenth of the 95th percentile speed. Stuck samples
+// and reversals carry torque the sliding law does not explain, all at a few
+// positions (where the sweep turns), which a periodogram over position would
+// take for detents.
 std::vector<std::uint32_t> moving_rows(const FitData& d, std::span<const std::uint32_t> rows) {
   // The strided rows' speeds: what strided_quantile would take of all of them.
   const std::size_t stride = detail::summary_stride(rows.size());
@@ -112,14 +113,18 @@ std::vector<std::uint32_t> moving_rows(const FitData& d, std::span<const std::ui
   speed.reserve(rows.size() / stride + 1);
   for (std::size_t j = 0; j < rows.size(); j += stride) speed.push_back(std::abs(d.omega[rows[j]]));
   const double threshold = 0.1 * detail::strided_quantile(speed, 0.95);
-  std::vector<std::uint32_t> kept;
-  kept.reserve(rows.size());
-  for (std::uint32_t i : rows) {
-    if (std::abs(d.omega[i]) >= threshold) kept.push_back(i);
+  // Starting values need no more than ~50 000 rows: evenly strided beyond
+  // that (Levenberg–Marquardt then uses every row).
+  const std::size_t every = std::max<std::size_t>(1, rows.size() / 50000);
+  std::vector<std::uint32_t> kept, all;
+  kept.reserve(rows.size() / every + 1);
+  all.reserve(rows.size() / every + 1);
+  for (std::size_t j = 0; j < rows.size(); j += every) {
+    all.push_back(rows[j]);
+    if (std::abs(d.omega[rows[j]]) >= threshold) kept.push_back(rows[j]);
   }
   // Too few left (a capture that mostly stands still): search them all.
-  if (kept.size() < rows.size() / 2) return {rows.begin(), rows.end()};
-  return kept;
+  return kept.size() < all.size() / 2 ? all : kept;
 }
 
 // Residuals (model − measured) and velocity parts of single rows at fixed
@@ -231,20 +236,35 @@ FitResult fit_knob(const FitData& d, const FitOptions& opt) {
   if (!r.detents) r.fitted[a] = r.fitted[a + 1] = r.fitted[a + 2] = false;
   if (rows.size() <= n + 1) throw FitDataError("too few samples for the model's parameters");
 
-  // Cells a quarter of the shortest period P may take (or one bin: no detents).
+  // Cells a quarter of P wide (or one bin: no detents). Should the fit
+  // shorten P by more than a tenth, the cells are rebuilt for the new P and
+  // the fit repeated, so the interpolant stays as exact as documented.
   std::optional<detail::PositionCells> cells;
+  double cells_P = 0.0;  // the P the cells were built for
   Residuals res{&d, rows, nullptr};
-  if (opt.compress) {
-    const double p_min = bounds.hi > bounds.lo ? std::max(bounds.lo, 0.5 * start[a + 1]) : start[a + 1];
-    cells.emplace(d, rows, r.detents ? 0.25 * p_min : 0.0);
+  const auto build_cells = [&](double P) {
+    cells.emplace(d, rows, r.detents ? 0.25 * P : 0.0);
     cells->factor();
+    cells_P = P;
     res.cells = &*cells;
-  }
+  };
+  if (opt.compress) build_cells(std::abs(start[a + 1]));
   detail::PositionCells* cp = cells ? &*cells : nullptr;
   r.phases.cells = lap();
 
-  Solved s = solve(res, opt, start, r.fitted, bounds);
-  r.iterations = s.iterations;
+  const auto refit = [&](const std::vector<double>& from) {
+    Solved out = solve(res, opt, from, r.fitted, bounds);
+    r.iterations += out.iterations;
+    if (cells && r.detents && std::abs(out.params[a + 1]) < 0.9 * cells_P) {
+      build_cells(std::abs(out.params[a + 1]));
+      cp = &*cells;
+      Solved again = solve(res, opt, out.params, r.fitted, bounds);
+      r.iterations += again.iterations;
+      out = std::move(again);
+    }
+    return out;
+  };
+  Solved s = refit(start);
   r.phases.solve = lap();
   // Residuals (measured − model) at s.params, while nothing changed them.
   std::vector<double> e;
@@ -265,8 +285,7 @@ FitResult fit_knob(const FitData& d, const FitOptions& opt) {
         e.clear();
         keep_only(res, cp, rows, std::move(kept));
         r.phases.stick_band = lap();
-        s = solve(res, opt, s.params, r.fitted, bounds);
-        r.iterations += s.iterations;
+        s = refit(s.params);
         r.phases.solve += lap();
       }
     }
@@ -288,8 +307,7 @@ FitResult fit_knob(const FitData& d, const FitOptions& opt) {
     if (r.outliers > 0 && kept.size() > 10 * n) {
       keep_only(res, cp, rows, std::move(kept));
       r.phases.trim = lap();
-      s = solve(res, opt, s.params, r.fitted, bounds);
-      r.iterations += s.iterations;
+      s = refit(s.params);
       r.phases.solve += lap();
     }
     r.phases.trim += lap();
@@ -314,11 +332,13 @@ FitResult fit_knob(const FitData& d, const FitOptions& opt) {
   const double m = static_cast<double>(rows.size());
   std::size_t k_free = 0;
   for (bool f : r.fitted) k_free += f ? 1 : 0;
-  double mean = 0.0;
-  for (std::uint32_t i : rows) mean += d.torque[i];
-  mean /= m;
-  double tss = 0.0;
-  for (std::uint32_t i : rows) tss += (d.torque[i] - mean) * (d.torque[i] - mean);
+  double sum = 0.0, sum2 = 0.0;  // of τ − τ₀, shifted against cancellation
+  const double shift = d.torque[rows.front()];
+  for (std::uint32_t i : rows) {
+    const double y = d.torque[i] - shift;
+    sum += y, sum2 += y * y;
+  }
+  const double tss = std::max(0.0, sum2 - sum * sum / m);
   r.samples = rows.size();
   r.rmse_Nm = std::sqrt(cov.rss / m);
   r.fit_percent = tss > 0 ? 100.0 * (1.0 - std::sqrt(cov.rss / tss)) : 0.0;

@@ -31,36 +31,33 @@ namespace {
 
 int group_of(double omega) { return omega > 0 ? 1 : omega < 0 ? -1 : 0; }
 
-void add_outer(CellMatrix& g, const std::array<double, kCellCols>& z, double sign) {
-  for (int a = 0; a < kCellCols; ++a) {
-    const double za = sign * z[static_cast<std::size_t>(a)];
-    for (int b = a; b < kCellCols; ++b) g(a, b) += za * z[static_cast<std::size_t>(b)];
+// Adds sign·zzᵀ to packed upper-triangle sums.
+void add_outer(std::array<double, kCellPacked>& s, const std::array<double, kCellCols>& z,
+               double sign) {
+  std::size_t k = 0;
+#pragma GCC unroll 8
+  for (std::size_t a = 0; a < kCellCols; ++a) {
+    const double za = sign * z[a];
+#pragma GCC unroll 8
+    for (std::size_t b = a; b < kCellCols; ++b) s[k++] += za * z[b];
   }
 }
 
-// Σ zzᵀ (upper triangle) over a run of samples in one cell, in local sums:
-// a sweep stays in a cell for tens of samples, and summing into the cell's
-// matrix in memory would chain every add through a store and a load.
+// Σ zzᵀ over a run of samples in one cell, in local sums: a sweep stays in
+// a cell for several samples, and summing into the cell in memory would
+// chain every add through a store and a load.
 struct RunSums {
-  std::array<double, kCellCols*(kCellCols + 1) / 2> s{};
+  std::array<double, kCellPacked> s{};
   std::uint32_t count = 0;
 
   void add(const std::array<double, kCellCols>& z) {
-    std::size_t k = 0;
-#pragma GCC unroll 8
-    for (std::size_t a = 0; a < kCellCols; ++a) {
-#pragma GCC unroll 8
-      for (std::size_t b = a; b < kCellCols; ++b) s[k++] += z[a] * z[b];
-    }
+    add_outer(s, z, 1.0);
     ++count;
   }
   void flush_into(Cell& c) {
-    std::size_t k = 0;
-    for (int a = 0; a < kCellCols; ++a) {
-      for (int b = a; b < kCellCols; ++b) c.gram(a, b) += s[k++];
-    }
+    for (std::size_t k = 0; k < kCellPacked; ++k) c.sums[k] += s[k], s[k] = 0.0;
     c.count += count;
-    *this = {};
+    count = 0;
   }
 };
 
@@ -106,15 +103,22 @@ PositionCells::PositionCells(const FitData& d, std::span<const std::uint32_t> ro
 void PositionCells::remove(std::uint32_t row) {
   const std::uint32_t c = cell_of_[row];
   if (c == kNone || removed_[row]) return;
-  add_outer(cells_[c].gram, z(row), -1.0);
+  add_outer(cells_[c].sums, z(row), -1.0);
   --cells_[c].count;
   removed_[row] = true;
 }
 
 void PositionCells::factor() {
   for (Cell& c : cells_) {
-    if (c.count == 0) continue;
-    const CellMatrix g = c.gram.selfadjointView<Eigen::Upper>();
+    std::size_t k = 0;
+    for (int a = 0; a < kCellCols; ++a) {
+      for (int b = a; b < kCellCols; ++b) c.gram(a, b) = c.gram(b, a) = c.sums[k++];
+    }
+    if (c.count == 0) {
+      c.root.setZero();
+      continue;
+    }
+    const CellMatrix& g = c.gram;
     // G = Pᵀ·L·D·Lᵀ·P; R = D^½·Lᵀ·P (D clamped at 0 against round-off:
     // a cell with fewer than 8 samples is singular).
     const Eigen::LDLT<CellMatrix> ldlt(g);

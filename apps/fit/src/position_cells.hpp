@@ -42,11 +42,14 @@ struct CellInterpolant {
   static const CellInterpolant& get();
 };
 
+inline constexpr int kCellPacked = kCellCols * (kCellCols + 1) / 2;
+
 struct Cell {
   double center = 0.0;  // rad
   int group = 0;        // sign of ω: −1, 0, +1
   std::uint32_t count = 0;
-  CellMatrix gram = CellMatrix::Zero();  // Σ zzᵀ over the cell's samples
+  std::array<double, kCellPacked> sums{};  // Σ zzᵀ, upper triangle row by row
+  CellMatrix gram = CellMatrix::Zero();  // the same as a full matrix (factor())
   CellMatrix root = CellMatrix::Zero();  // R with RᵀR = gram (factor())
 };
 
@@ -77,7 +80,7 @@ class PositionCells {
   // cell assignment, so it can still be evaluated.
   void remove(std::uint32_t row);
   bool removed(std::uint32_t row) const { return removed_[row]; }
-  // Computes every cell's R; call after the last remove().
+  // Computes every cell's gram and R; call after the last remove().
   void factor();
 
   const std::vector<Cell>& cells() const { return cells_; }
