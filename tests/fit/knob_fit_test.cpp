@@ -171,7 +171,8 @@ TEST(KnobFit, PredictionBandsAndParts) {
     mean_curve += p.curve_half[i] / static_cast<double>(d.size());
     inside += std::abs(d.torque[i] - p.tau[i]) <= p.observation_half[i] ? 1 : 0;
   }
-  EXPECT_NEAR(mean_curve, r.ci95_torque_Nm, 1e-9);
+  // The fit's figure averages evenly strided rows (~8 000), predict every row.
+  EXPECT_NEAR(mean_curve, r.ci95_torque_Nm, 1e-3 * mean_curve);
   // Uniform noise: ±1.96σ = ±2.26 covers all of ±2, so nearly every sample.
   EXPECT_GT(inside, static_cast<int>(0.95 * static_cast<double>(d.size())));
 }
