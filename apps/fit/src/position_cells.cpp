@@ -43,31 +43,36 @@ void add_outer(std::array<double, kCellPacked>& s, const std::array<double, kCel
   }
 }
 
-// Σ zzᵀ over a run of samples in one cell, in local sums: a sweep stays in
-// a cell for several samples, and summing into the cell in memory would
-// chain every add through a store and a load.
-struct RunSums {
+// Adds Σ zzᵀ over rows[begin, end), all in one cell, to that cell's sums.
+// The sums are local while the run lasts: summing into the cell in memory
+// would chain every add of every row through a store and a load.
+void add_run(const CellRows& v, std::span<const std::uint32_t> rows, Cell& cell) {
   std::array<double, kCellPacked> s{};
-  std::uint32_t count = 0;
+  for (std::uint32_t i : rows) add_outer(s, v.z(i), 1.0);
+  for (std::size_t k = 0; k < kCellPacked; ++k) cell.sums[k] += s[k];
+  cell.count += static_cast<std::uint32_t>(rows.size());
+}
 
-  void add(const std::array<double, kCellCols>& z) {
-    add_outer(s, z, 1.0);
-    ++count;
+// The smallest and largest position over the rows (two independent pairs of
+// running extremes, so the compares do not wait on one another).
+std::array<double, 2> position_range(const FitData& d, std::span<const std::uint32_t> rows) {
+  std::array<double, 4> m{d.theta[rows[0]], d.theta[rows[0]], d.theta[rows[0]], d.theta[rows[0]]};
+  std::size_t j = 0;
+  for (; j + 1 < rows.size(); j += 2) {
+    const double a = d.theta[rows[j]], b = d.theta[rows[j + 1]];
+    m[0] = std::min(m[0], a), m[1] = std::max(m[1], a);
+    m[2] = std::min(m[2], b), m[3] = std::max(m[3], b);
   }
-  void flush_into(Cell& c) {
-    for (std::size_t k = 0; k < kCellPacked; ++k) c.sums[k] += s[k], s[k] = 0.0;
-    c.count += count;
-    count = 0;
-  }
-};
+  if (j < rows.size()) m[0] = std::min(m[0], d.theta[rows[j]]), m[1] = std::max(m[1], d.theta[rows[j]]);
+  return {std::min(m[0], m[2]), std::max(m[1], m[3])};
+}
 
 }  // namespace
 
 PositionCells::PositionCells(const FitData& d, std::span<const std::uint32_t> rows,
                              double max_width)
     : d_(&d), cell_of_(d.size(), kNone), removed_(d.size(), false) {
-  double lo = d.theta[rows[0]], hi = lo;
-  for (std::uint32_t i : rows) lo = std::min(lo, d.theta[i]), hi = std::max(hi, d.theta[i]);
+  const auto [lo, hi] = position_range(d, rows);
   const double range = std::max(hi - lo, 1e-12);
   bins_ = max_width > 0 ? static_cast<std::size_t>(std::ceil(range / max_width)) : 1;
   bins_ = std::clamp<std::size_t>(bins_, 1, 1u << 20);
@@ -84,20 +89,20 @@ PositionCells::PositionCells(const FitData& d, std::span<const std::uint32_t> ro
       centers_[b * 3 + static_cast<std::size_t>(g)] = c.center;
     }
   }
+  // Each row's cell first, then the sums run by run.
   const double bins_per_rad = 1.0 / (2 * half_);
-  RunSums run;
-  std::uint32_t current = kNone;
   for (std::uint32_t i : rows) {
     const auto b = std::min(static_cast<std::size_t>((d.theta[i] - lo_) * bins_per_rad), bins_ - 1);
-    const auto c = static_cast<std::uint32_t>(b * 3 + static_cast<std::size_t>(group_of(d.omega[i]) + 1));
-    cell_of_[i] = c;
-    if (c != current) {
-      if (current != kNone) run.flush_into(cells_[current]);
-      current = c;
-    }
-    run.add(z(i));
+    cell_of_[i] = static_cast<std::uint32_t>(b * 3 + static_cast<std::size_t>(group_of(d.omega[i]) + 1));
   }
-  if (current != kNone) run.flush_into(cells_[current]);
+  const CellRows view = this->rows();
+  for (std::size_t j = 0; j < rows.size();) {
+    const std::uint32_t c = cell_of_[rows[j]];
+    std::size_t end = j + 1;
+    while (end < rows.size() && cell_of_[rows[end]] == c) ++end;
+    add_run(view, rows.subspan(j, end - j), cells_[c]);
+    j = end;
+  }
 }
 
 void PositionCells::remove(std::uint32_t row) {
