@@ -5,10 +5,12 @@
 // Why this is exact (up to interpolation): within one direction of motion
 // (ω < 0, ω = 0, ω > 0) Eq. 6 and Eq. 14 are affine in α and ω,
 //   τ̂ = M·α + B_g·ω + c_g + D(θ),
-// and only the detent term D depends on position. Over a cell — a position bin
-// no wider than a quarter detent period, one direction — D is replaced by its
-// quartic interpolant through five Chebyshev nodes, D ≈ Σ d_k·u^k with u the
-// position within the bin scaled to [−1, 1] (error < 2·(1/16)⁵/5!·A ≈ 2e-8·A).
+// and only the detent term D = A·sin(θ/P + S) depends on position. Over a
+// cell — a position bin about P/4 wide (fit_knob rebuilds the cells should P
+// shrink by a tenth), one direction — D is replaced by its quartic
+// interpolant through five Chebyshev nodes, D ≈ Σ d_k·u^k with u the position
+// within the bin scaled to [−1, 1] (error < 2·(1/16)⁵/5!·A ≈ 2e-8·A at P/4,
+// 3e-8·A at P/3.6).
 // Then each sample's residual is z·v with z = (τ, α, ω, u⁰ … u⁴) the data and
 // v = (−1, M, B_g, c_g + d₀, d₁ … d₄) the model, so a cell's residual norm is
 // vᵀ·G·v with G = Σ zzᵀ, and the cell contributes the 8 residuals R·v,

@@ -5,7 +5,11 @@
 // not thread-safe, so one mutex serializes write_report.
 //
 // Look of the plots (the thesis' figures): raw torque as a light gray point
-// cloud, the fit in black, the 95% band of the fitted curve dashed. The total
+// cloud, the fit in black, the 95% band of the fitted curve dashed. A band is
+// a few hundredths of a mN·m on a plot spanning tens, thinner than its line,
+// so every page also has a residual panel (raw − fitted) on the residuals'
+// own scale, where the bands are shaded: the curve's band dark blue, the
+// observation band light blue. The total
 // torque against θ or θ̇ is not a function of that axis (it depends on all of
 // θ, θ̇, θ̈), so fitted τ and its band are drawn as points there; the parts
 // τ_pos(θ) and τ_vel(θ̇) are functions, so they are drawn as lines through the
@@ -45,17 +49,19 @@ enum : PLINT {
   kBandDots = 3,  // band drawn as points (total τ panels)
   kObs = 4,       // observation band
   kStick = 5,     // stick band limits
-  kColorCount = 6
+  kCurveFill = 6,  // shaded 95% band of the fitted curve
+  kObsFill = 7,    // shaded 95% observation band
+  kColorCount = 8
 };
-constexpr PLINT kRed[kColorCount] = {255, 0, 190, 105, 120, 150};
-constexpr PLINT kGreen[kColorCount] = {255, 0, 190, 105, 120, 150};
-constexpr PLINT kBlue[kColorCount] = {255, 0, 190, 105, 120, 150};
+constexpr PLINT kRed[kColorCount] = {255, 0, 190, 105, 120, 150, 60, 200};
+constexpr PLINT kGreen[kColorCount] = {255, 0, 190, 105, 120, 150, 100, 218};
+constexpr PLINT kBlue[kColorCount] = {255, 0, 190, 105, 120, 150, 190, 242};
 
 // PLplot's built-in line styles (pllsty): 1 solid, 2 1 mm dashes, 3 2 mm dashes.
 // 4: long dashes, short gaps (the stick band's limits).
 constexpr PLINT kSolid = 1, kDotted = 2, kDashed = 3, kLongDash = 4;
 
-enum class Mark { Dots, Line, Dashed, Dotted, LongDash };
+enum class Mark { Dots, Line, Dashed, Dotted, LongDash, Fill };
 
 struct Layer {
   std::string label;  // empty: not in the legend
@@ -64,6 +70,7 @@ struct Layer {
   double size = 1.0;    // dot diameter or line width, in pen widths
   int legend_rank = 0;  // legend order (ties keep drawing order)
   std::vector<PLFLT> x, y;
+  std::vector<PLFLT> y_low;  // Fill: the area between y_low and y
 };
 
 struct Panel {
@@ -72,6 +79,7 @@ struct Panel {
   std::vector<double> vlines;  // vertical long-dashed lines (stick band limits)
   std::string vline_label;
   bool y_from_zero = false;
+  double y_limit = 0.0;  // > 0: y axis fixed at ±y_limit (what lies beyond is cut)
 };
 
 struct Page {
@@ -258,8 +266,33 @@ struct Metrics {
 
 // Non-finite values (a band whose covariance failed, say) are left out:
 // points are dropped, lines are broken there.
+// A filled band: one polygon per run of finite vertices, upper edge forward
+// and lower edge back.
+void draw_fill(const Layer& l) {
+  plcol0(l.color);
+  std::vector<PLFLT> x, y;
+  std::size_t start = 0;
+  auto polygon = [&](std::size_t end) {
+    x.clear();
+    y.clear();
+    for (std::size_t i = start; i < end; ++i) x.push_back(l.x[i]), y.push_back(l.y[i]);
+    for (std::size_t i = end; i-- > start;) x.push_back(l.x[i]), y.push_back(l.y_low[i]);
+    if (x.size() >= 4) plfill(static_cast<PLINT>(x.size()), x.data(), y.data());
+  };
+  for (std::size_t i = 0; i < l.x.size(); ++i) {
+    if (std::isfinite(l.x[i]) && std::isfinite(l.y[i]) && std::isfinite(l.y_low[i])) continue;
+    polygon(i);
+    start = i + 1;
+  }
+  polygon(l.x.size());
+}
+
 void draw_layer(const Layer& l, const Metrics& m) {
   if (l.x.empty()) return;
+  if (l.mark == Mark::Fill) {
+    draw_fill(l);
+    return;
+  }
   plcol0(l.color);
   plwidth(l.size * m.pen);
   switch (l.mark) {
@@ -268,6 +301,7 @@ void draw_layer(const Layer& l, const Metrics& m) {
     case Mark::Dashed: pllsty(kDashed); break;
     case Mark::Dotted: pllsty(kDotted); break;
     case Mark::LongDash: pllsty(kLongDash); break;
+    case Mark::Fill: break;
   }
   std::vector<PLFLT> x, y;
   x.reserve(l.x.size());
@@ -347,7 +381,8 @@ double draw_legend(const Panel& panel, double x0, double x1, double vy0, double 
   const std::size_t n = entries.size();
   std::vector<PLINT> opt(n), text_colors(n, ink ? kBlack : kWhite), line_colors(n),
       line_styles(n), symbol_colors(n), symbol_numbers(n, 3);
-  std::vector<PLFLT> line_widths(n), symbol_scales(n);
+  std::vector<PLINT> box_colors(n, kWhite), box_patterns(n, 0);
+  std::vector<PLFLT> line_widths(n), symbol_scales(n), box_scales(n, 0.9), box_widths(n, 0.0);
   std::vector<const char*> text(n), symbols(n, "•");
   for (std::size_t k = 0; k < n; ++k) {
     const LegendEntry& e = entries[k];
@@ -361,6 +396,11 @@ double draw_legend(const Panel& panel, double x0, double x1, double vy0, double 
       case Mark::Dashed: opt[k] = PL_LEGEND_LINE; line_styles[k] = kDashed; break;
       case Mark::Dotted: opt[k] = PL_LEGEND_LINE; line_styles[k] = kDotted; break;
       case Mark::LongDash: opt[k] = PL_LEGEND_LINE; line_styles[k] = kLongDash; break;
+      case Mark::Fill:
+        opt[k] = PL_LEGEND_COLOR_BOX;
+        line_styles[k] = kSolid;
+        box_colors[k] = ink ? e.color : kWhite;
+        break;
     }
   }
   plvpor(x0, x1, vy0, vy1);
@@ -372,8 +412,9 @@ double draw_legend(const Panel& panel, double x0, double x1, double vy0, double 
   pllegend(&lw, &lh, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX,
            PL_POSITION_TOP | PL_POSITION_LEFT | PL_POSITION_INSIDE | PL_POSITION_VIEWPORT, 0.0,
            0.0, sample, kWhite, ink ? kBlack : kWhite, kSolid, 0, 0, static_cast<PLINT>(n),
-           opt.data(), 0.8, kLegendTextScale, 2.3, 0.0, text_colors.data(), text.data(), nullptr,
-           nullptr, nullptr, nullptr, line_colors.data(), line_styles.data(), line_widths.data(),
+           opt.data(), 0.8, kLegendTextScale, 2.3, 0.0, text_colors.data(), text.data(),
+           box_colors.data(), box_patterns.data(), box_scales.data(), box_widths.data(),
+           line_colors.data(), line_styles.data(), line_widths.data(),
            symbol_colors.data(), symbol_scales.data(), symbol_numbers.data(), symbols.data());
   return lw * (x1 - x0);
 }
@@ -390,6 +431,7 @@ void draw_panel(const Panel& panel, double vx0, double vx1, double vy0, double v
   const bool from_zero = panel.y_from_zero && yr.lo >= 0.0;
   yr = yr.padded(0.05);
   if (from_zero) yr.lo = 0.0;
+  if (panel.y_limit > 0.0) yr = {-panel.y_limit, panel.y_limit};
 
   plvpor(vx0, vx1, vy0, vy1);
   plwind(xr.lo, xr.hi, yr.lo, yr.hi);
@@ -588,6 +630,87 @@ Panel part_panel(const Inputs& in, const std::vector<double>& x, const std::vect
   return panel;
 }
 
+// The residual raw τ − fitted τ of every sample.
+std::vector<double> residuals(const Inputs& in) {
+  std::vector<double> r(in.n);
+  for (std::size_t i = 0; i < in.n; ++i) r[i] = in.d.torque[i] - in.p.tau[i];
+  return r;
+}
+
+// The q-quantile of the finite values of v.
+double finite_quantile(const std::vector<double>& v, double q) {
+  std::vector<double> f;
+  f.reserve(v.size());
+  for (const double x : v)
+    if (std::isfinite(x)) f.push_back(x);
+  if (f.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const auto k = static_cast<std::ptrdiff_t>(q * static_cast<double>(f.size() - 1));
+  std::nth_element(f.begin(), f.begin() + k, f.end());
+  return f[static_cast<std::size_t>(k)];
+}
+
+// A residual panel's y range (presentation units): six robust standard
+// deviations of the residual (median absolute deviation) and the bands'
+// usual width, so the transients the fit left out (stick-band samples,
+// breakaway) do not shrink the bands to a line. The heading counts what lies
+// beyond.
+void fit_residual_range(Panel& panel, const Inputs& in, const std::vector<double>& r) {
+  std::vector<double> dev(r.size());
+  const double med = finite_quantile(r, 0.5);
+  for (std::size_t i = 0; i < r.size(); ++i) dev[i] = std::abs(r[i] - med);
+  double limit = 6.0 * 1.4826 * finite_quantile(dev, 0.5);
+  for (const auto* half : {&in.p.curve_half, &in.p.observation_half}) {
+    if (half->empty()) continue;
+    const double h = finite_quantile(*half, 0.95);
+    if (std::isfinite(h)) limit = std::max(limit, 1.3 * h);
+  }
+  if (!(limit > 0.0) || !std::isfinite(limit)) return;
+  panel.y_limit = kmNm * limit;
+  std::size_t beyond = 0;
+  for (const double v : r) beyond += std::abs(v) > limit ? 1 : 0;
+  if (beyond > 0) {
+    panel.heading += " (" + std::to_string(beyond) + " beyond ±" + fmt("%.3g", kmNm * limit) +
+                     " mN·m)";
+  }
+}
+
+Layer band_fill(std::string label, PLINT color, int rank) {
+  Layer l = curve(std::move(label), Mark::Fill, color, 1.0, rank);
+  return l;
+}
+
+// Residual against θ or θ̇ with the shaded bands about zero (bands averaged
+// along the axis, as in the part panels).
+Panel residual_panel(const Inputs& in, const std::vector<double>& x, const std::string& xlabel) {
+  Panel panel;
+  panel.heading = "Residual raw #gt − fitted #gt, 95% bands shaded";
+  panel.xlabel = xlabel;
+  panel.ylabel = "residual (mN·m)";
+  const std::vector<double> r = residuals(in);
+  const auto order = sorted_by(x);
+  const auto vertices = thin(in.n, std::min<std::size_t>(in.opt.max_points, 600));
+  auto fill = [&](std::string label, PLINT color, int rank, const std::vector<double>& half) {
+    Layer l = band_fill(std::move(label), color, rank);
+    const auto smooth = smoothed_along(half, order);
+    for (const std::size_t k : vertices) {
+      l.x.push_back(x[order[k]]);
+      l.y.push_back(kmNm * smooth[k]);
+      l.y_low.push_back(-kmNm * smooth[k]);
+    }
+    return l;
+  };
+  if (in.has_obs) panel.layers.push_back(fill("95% observation band", kObsFill, 3, in.p.observation_half));
+  panel.layers.push_back(points("residual", kCloud, 2.2, 0, x, thin(in.n, in.opt.max_points), kmNm,
+                                [&](std::size_t i) { return r[i]; }));
+  panel.layers.push_back(fill("95% band of the fit", kCurveFill, 2, in.p.curve_half));
+  Layer zero = curve("", Mark::Line, kBlack, 1.0, 1);
+  zero.x = {x[order.front()], x[order.back()]};
+  zero.y = {0.0, 0.0};
+  panel.layers.push_back(std::move(zero));
+  fit_residual_range(panel, in, r);
+  return panel;
+}
+
 std::string with_title(const ReportOptions& opt, const std::string& what) {
   return opt.title.empty() ? what : escape_plplot(opt.title) + " — " + what;
 }
@@ -612,6 +735,7 @@ Page position_page(const Inputs& in) {
                      : "Position part: #gt#dpos#u = #gt − #gt#dacc#u − #gt#dvel#u (no detents "
                        "fitted: fitted #gt#dpos#u = 0)";
   page.panels.push_back(std::move(part));
+  page.panels.push_back(residual_panel(in, in.d.theta, xl));
   return page;
 }
 
@@ -630,6 +754,7 @@ Page velocity_page(const Inputs& in) {
     }
   }
   page.panels.push_back(std::move(part));
+  page.panels.push_back(residual_panel(in, in.d.omega, xl));
   return page;
 }
 
@@ -643,14 +768,12 @@ Page time_page(const Inputs& in) {
   const std::size_t line_buckets = std::max<std::size_t>(1, in.opt.max_points / 2);
   const std::size_t band_buckets = std::min<std::size_t>(in.opt.max_points, 1000);
   Panel top, bottom;
-  // Band edges ±h(t), h's largest value over each bucket.
-  auto band = [&](const char* label, Mark mark, PLINT color, double width, int rank,
-                  const std::vector<double>& half) {
-    for (const double sign : {1.0, -1.0}) {
-      Layer l = curve(sign > 0 ? label : "", mark, color, width, rank);
-      envelope_series(l, d.t, band_buckets, sign * kmNm, [&](std::size_t i) { return half[i]; });
-      bottom.layers.push_back(std::move(l));
-    }
+  // Shaded ±h(t), h's largest value over each bucket.
+  auto band = [&](const char* label, PLINT color, int rank, const std::vector<double>& half) {
+    Layer l = band_fill(label, color, rank);
+    envelope_series(l, d.t, band_buckets, kmNm, [&](std::size_t i) { return half[i]; });
+    for (const double y : l.y) l.y_low.push_back(-y);
+    bottom.layers.push_back(std::move(l));
   };
 
   top.heading = "Raw and fitted torque";
@@ -662,17 +785,19 @@ Page time_page(const Inputs& in) {
   minmax_series(fitted, d.t, line_buckets, kmNm, [&](std::size_t i) { return p.tau[i]; });
   top.layers.push_back(std::move(fitted));
 
-  bottom.heading = "Residual: raw #gt − fitted #gt";
+  bottom.heading = "Residual raw #gt − fitted #gt, 95% bands shaded";
   bottom.xlabel = "time (s)";
   bottom.ylabel = "residual (mN·m)";
+  const std::vector<double> r = residuals(in);
+  if (in.has_obs) band("95% observation band", kObsFill, 3, p.observation_half);
   bottom.layers.push_back(points("residual", kCloud, 2.2, 0, d.t, cloud, kmNm,
-                                 [&](std::size_t i) { return d.torque[i] - p.tau[i]; }));
-  if (in.has_obs) band("95% observation band", Mark::Dotted, kObs, 1.3, 3, p.observation_half);
-  band("95% band", Mark::Dashed, kBlack, 1.0, 2, p.curve_half);
+                                 [&](std::size_t i) { return r[i]; }));
+  band("95% band of the fit", kCurveFill, 2, p.curve_half);
   Layer zero = curve("", Mark::Line, kBlack, 1.0, 1);
   zero.x = {d.t.front(), d.t.back()};
   zero.y = {0.0, 0.0};
   bottom.layers.push_back(std::move(zero));
+  fit_residual_range(bottom, in, r);
 
   page.panels.push_back(std::move(top));
   page.panels.push_back(std::move(bottom));

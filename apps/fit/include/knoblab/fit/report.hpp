@@ -2,11 +2,17 @@
 // fit, drawn with PLplot into image files a person or the UI opens.
 //
 //   torque_position.png / .svg   top: raw τ and fitted τ against θ with the
-//                                95% band; bottom: raw τ_pos = τ − τ_acc − τ_vel
-//                                and fitted τ_pos with its band
+//                                95% band; middle: raw τ_pos = τ − τ_acc − τ_vel
+//                                and fitted τ_pos with its band; bottom: the
+//                                residual τ − τ̂ with both 95% bands shaded
 //   torque_velocity.png / .svg   the same against θ̇ (raw τ_vel = τ − τ_acc − τ_pos)
 //   torque_time.png / .svg       raw and fitted τ against time, and the residual
+//                                with the bands shaded
 //   ci_torque.png / .svg         95% band half-width against fitted τ (Fig. 24)
+// The bands are hundredths of a mN·m beside torques of tens, so on the torque
+// panels they sit inside the fitted line; the residual panels (y range six
+// robust SDs or the bands' width, transients counted in the heading) are
+// where they are seen.
 // Axes in presentation units (mN·m, rad, rad/s, s), labelled with them.
 #pragma once
 
