@@ -127,7 +127,9 @@ CovarianceEstimate covariance_from_rows(std::vector<double> residuals,
 
 CovarianceEstimate covariance_from_cells(ModelKind kind, const PositionCells& cells,
                                          std::span<const std::uint32_t> rows, const double* p,
-                                         const std::vector<bool>& fitted) {
+                                         const std::vector<bool>& fitted,
+                                         std::span<const double> residuals) {
+  const bool given = residuals.size() == rows.size();
   const CellModel cm = cell_model(kind, cells, p, true);
   const std::size_t n = cm.n, m = rows.size();
   const std::vector<Eigen::Index> free = free_parameters(fitted);
@@ -172,7 +174,7 @@ CovarianceEstimate covariance_from_cells(ModelKind kind, const PositionCells& ce
       const std::uint32_t c = cm.rows.cell_of[i];
       if (c != run_cell) flush(), run_cell = c;
       const std::array<double, kCellCols> z = cm.rows.z(i);
-      const double r = cm.residual(i);
+      const double r = given ? residuals[j] : cm.residual(i);
 #pragma GCC unroll 8
       for (std::size_t a = 0; a < kCellCols; ++a) w[a] += z[a] * r;
       rss += r * r;

@@ -266,12 +266,12 @@ FitResult fit_knob(const FitData& d, const FitOptions& opt) {
   };
   Solved s = refit(start);
   r.phases.solve = lap();
-  // Residuals (measured − model) at s.params, while nothing changed them.
+  // Residuals (model − measured) of rows at s.params, while nothing changed them.
   std::vector<double> e;
   if (opt.stick_band && opt.model == ModelKind::Thesis6) {
     const RowModel model(res, opt.model, s.params);
     e.resize(rows.size());
-    for (std::size_t j = 0; j < rows.size(); ++j) e[j] = -model.residual(rows[j]);
+    for (std::size_t j = 0; j < rows.size(); ++j) e[j] = model.residual(rows[j]);
     r.stick = detail::estimate_stick_band(
         d, rows, e, [&](std::size_t j) { return model.velocity_part(rows[j]); });
     if (r.stick) {
@@ -305,6 +305,7 @@ FitResult fit_knob(const FitData& d, const FitOptions& opt) {
     }
     r.outliers = rows.size() - kept.size();
     if (r.outliers > 0 && kept.size() > 10 * n) {
+      e.clear();
       keep_only(res, cp, rows, std::move(kept));
       r.phases.trim = lap();
       s = refit(s.params);
@@ -316,7 +317,7 @@ FitResult fit_knob(const FitData& d, const FitOptions& opt) {
   r.params = s.params;
 
   const detail::CovarianceEstimate cov =
-      cells ? detail::covariance_from_cells(opt.model, *cells, rows, r.params.data(), r.fitted)
+      cells ? detail::covariance_from_cells(opt.model, *cells, rows, r.params.data(), r.fitted, e)
             : detail::estimate_covariance(opt.model, d, rows, r.params.data(), r.fitted);
   r.covariance = cov.covariance;
   r.se = cov.se;

@@ -175,9 +175,12 @@ void evaluate_cells(ModelKind kind, const PositionCells& cells, std::span<const 
 
 // The covariance (covariance.cpp) through the cells: JᵀJ from the cells'
 // Gram matrices, the scores and the curve's band in one pass each over rows.
+// `residuals` (model − measured of rows at p), when the caller has them,
+// spares recomputing them.
 CovarianceEstimate covariance_from_cells(ModelKind kind, const PositionCells& cells,
                                          std::span<const std::uint32_t> rows, const double* p,
-                                         const std::vector<bool>& fitted);
+                                         const std::vector<bool>& fitted,
+                                         std::span<const double> residuals = {});
 
 struct CellResidual {
   ModelKind kind;

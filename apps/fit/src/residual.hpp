@@ -104,12 +104,13 @@ CovarianceEstimate covariance_from_rows(std::vector<double> residuals,
                                         const std::vector<bool>& fitted);
 
 // Stick band from the sliding-law residual near zero velocity (stick_band.cpp).
-// rows: the fitted rows of d; e: their sliding-law residuals, measured − model
-// (raw τ_vel − τ̂_vel); velocity_part(j): the model's τ̂_vel of rows[j], asked
-// only of the rows inside the band (raw τ_vel = e + τ̂_vel gives D±).
+// rows: the fitted rows of d; residual: theirs, model − measured (the sliding
+// law's τ̂_vel − raw τ_vel); velocity_part(j): the model's τ̂_vel of rows[j],
+// asked only of the rows inside the band (raw τ_vel = τ̂_vel − residual
+// gives D±).
 std::optional<StickBand> estimate_stick_band(const FitData& d,
                                              std::span<const std::uint32_t> rows,
-                                             std::span<const double> e,
+                                             std::span<const double> residual,
                                              const std::function<double(std::size_t)>& velocity_part);
 
 // The q-quantile of at most ~8 000 evenly strided values of v: robust scales

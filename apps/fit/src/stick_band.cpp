@@ -42,7 +42,7 @@ double strided_quantile(std::span<const double> v, double q) {
 
 std::optional<StickBand> estimate_stick_band(const FitData& d,
                                              std::span<const std::uint32_t> rows,
-                                             std::span<const double> e,
+                                             std::span<const double> residual,
                                              const std::function<double(std::size_t)>& velocity_part) {
   const auto speed = [&](std::size_t j) { return std::abs(d.omega[rows[j]]); };
   double top = 0.0;
@@ -60,7 +60,7 @@ std::optional<StickBand> estimate_stick_band(const FitData& d,
   outer.reserve(n_fast / stride + 1);
   for (std::size_t j = 0, skip = 0; j < rows.size(); ++j) {
     if (!(speed(j) > fast)) continue;
-    if (skip == 0) outer.push_back(e[j]), skip = stride;
+    if (skip == 0) outer.push_back(residual[j]), skip = stride;
     --skip;
   }
   const double med = strided_quantile(outer, 0.5);
@@ -82,7 +82,7 @@ std::optional<StickBand> estimate_stick_band(const FitData& d,
     if (v >= fast) continue;
     while (bin > 0 && v < edge[bin - 1]) --bin;
     while (bin < kBins && v >= edge[bin]) ++bin;
-    off[bin] += std::abs(e[j] - med) > kExcess * sigma ? 1 : 0;
+    off[bin] += std::abs(residual[j] - med) > kExcess * sigma ? 1 : 0;
     ++count[bin];
   }
   double dv = 0.0;
@@ -99,7 +99,7 @@ std::optional<StickBand> estimate_stick_band(const FitData& d,
   band.dv = dv;
   std::vector<double> inside;
   for (std::size_t j = 0; j < rows.size(); ++j) {
-    if (speed(j) < dv) inside.push_back(e[j] + velocity_part(j));  // raw τ_vel
+    if (speed(j) < dv) inside.push_back(velocity_part(j) - residual[j]);  // raw τ_vel
   }
   band.samples = inside.size();
   if (inside.size() < kMinPerBin) return std::nullopt;
