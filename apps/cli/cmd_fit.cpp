@@ -1,14 +1,13 @@
 // knoblab fit: fit the knob model to a capture (thesis Ch. 2, Eq. 6 and 7).
 #include <cstdio>
-#include <fstream>
+#include <filesystem>
 
+#include "capture_input.hpp"
 #include "commands.hpp"
 #include "fit_run.hpp"
 #include "knoblab/fit/render_model.hpp"
 #include "knoblab/fit/report.hpp"
 #include "knoblab/fit/result_json.hpp"
-#include "knoblab/interchange/csv.hpp"
-#include "knoblab/store/store.hpp"
 
 namespace knoblab::cli {
 
@@ -32,21 +31,6 @@ const CommandSpec kFitSpec{
      {"no-stick", false, "do not estimate the Karnopp stick band"}},
     0, 0};
 
-namespace {
-
-void write_text(const std::string& path, const std::string& text) {
-  if (path == "-") {
-    std::fwrite(text.data(), 1, text.size(), stdout);
-    std::fputc('\n', stdout);
-    return;
-  }
-  std::ofstream f(path, std::ios::binary | std::ios::trunc);
-  f << text << "\n";
-  if (!f.flush()) throw std::runtime_error("cannot write " + path);
-}
-
-}  // namespace
-
 int run_fit(const Args& args) {
   fit::PrepOptions prep;
   fit::FitOptions opt;
@@ -69,26 +53,12 @@ int run_fit(const Args& args) {
   prep.filter = !args.has("no-filter");
   opt.stick_band = !args.has("no-stick");
 
-  interchange::Capture capture;
-  std::optional<store::Store> db;
-  std::optional<std::int64_t> capture_id;
-  std::string title;
-  if (auto input = args.get("input")) {
-    if (args.has("capture")) throw UsageError("give --input or --capture, not both");
-    capture = interchange::read_csv(*input);
-    title = std::filesystem::path(*input).filename().string();
-  } else if (auto id = args.get("capture")) {
-    db.emplace(store::Store::open(args.require("db")));
-    capture_id = std::stoll(*id);
-    const auto info = db->capture_info(*capture_id);
-    if (!info) throw std::runtime_error("no capture " + *id + " in the store");
-    capture = db->load_samples(*capture_id);
-    title = "capture " + *id + (info->knob.empty() ? "" : " (" + info->knob + ")");
-  } else {
-    throw UsageError("give --input FILE.csv or --capture ID --db FILE");
-  }
+  CaptureInput in = read_capture_input(args);
+  const std::string& title = in.title;
+  auto& db = in.db;
+  const auto& capture_id = in.capture_id;
 
-  const FitRun run = fit_capture(capture, prep, opt);
+  const FitRun run = fit_capture(in.capture, prep, opt);
   const fit::FitResult& r = run.result;
   const bool json_to_stdout = args.get("json") == std::optional<std::string>("-");
   if (!json_to_stdout) {

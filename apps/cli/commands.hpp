@@ -17,7 +17,7 @@ struct Command {
 const std::vector<Command>& commands();
 
 extern const CommandSpec kSimulateSpec, kImportSpec, kExportSpec, kInspectSpec, kDemoSpec,
-    kListSpec, kFitSpec, kFitsSpec, kFitExportSpec;
+    kListSpec, kFitSpec, kFitsSpec, kFitExportSpec, kDiscrepancySpec;
 int run_simulate(const Args&);
 int run_import(const Args&);
 int run_export(const Args&);
@@ -27,5 +27,6 @@ int run_list(const Args&);
 int run_fit(const Args&);
 int run_fits(const Args&);
 int run_fit_export(const Args&);
+int run_discrepancy(const Args&);
 
 }  // namespace knoblab::cli

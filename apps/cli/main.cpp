@@ -13,7 +13,8 @@ const std::vector<Command>& commands() {
   static const std::vector<Command> all = {
       {kSimulateSpec, run_simulate}, {kImportSpec, run_import}, {kExportSpec, run_export},
       {kListSpec, run_list},         {kInspectSpec, run_inspect}, {kFitSpec, run_fit},
-      {kFitsSpec, run_fits},         {kFitExportSpec, run_fit_export}, {kDemoSpec, run_demo},
+      {kFitsSpec, run_fits},         {kFitExportSpec, run_fit_export},
+      {kDiscrepancySpec, run_discrepancy}, {kDemoSpec, run_demo},
   };
   return all;
 }

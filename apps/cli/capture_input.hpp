@@ -1,0 +1,28 @@
+// What `fit` and `discrepancy` read and write: a capture from --input FILE.csv
+// or --capture ID --db FILE, and text to a file or stdout ('-').
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "args.hpp"
+#include "knoblab/interchange/capture.hpp"
+#include "knoblab/store/store.hpp"
+
+namespace knoblab::cli {
+
+struct CaptureInput {
+  interchange::Capture capture;
+  std::string title;                       // file name, or "capture N (knob)"
+  std::optional<store::Store> db;          // open when read from the store
+  std::optional<std::int64_t> capture_id;
+};
+
+// Throws UsageError when neither or both sources are given.
+CaptureInput read_capture_input(const Args& args);
+
+// Writes text and a newline to `path`, or to stdout when path is "-".
+void write_text(const std::string& path, const std::string& text);
+
+}  // namespace knoblab::cli

@@ -1,0 +1,84 @@
+// Discrepancy discovery: where a recording and the fitted thesis model
+// disagree, which physics from the effect library explains it, fitted and
+// checked on data the fit did not see (docs/discrepancy.md).
+//
+//   FitData d = fit::prepare(capture);
+//   DiscrepancyResult r = discover(d);
+//   r.findings[0].effect, r.findings[0].explanation, r.final_model.heldout_rmse_Nm
+//
+// The recording is cut into contiguous time blocks; even blocks train, odd
+// blocks are held out. The base model (Eq. 6, fit_knob's start and stick
+// band) is fitted on the training blocks. Every candidate effect is then
+// fitted jointly with the base parameters (Ceres, autodiff through
+// knoblab/model/effects.hpp) and scored on the held-out blocks. The best
+// candidate is kept only when it lowers the held-out RMS by at least
+// min_heldout_gain, consistently across the held-out blocks (t of the
+// per-block mean-square drop ≥ min_t) and lowers the BIC; then the search
+// repeats with it in the model, until nothing passes.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "knoblab/discovery/effects.hpp"
+#include "knoblab/fit/fit_data.hpp"
+
+namespace knoblab::discovery {
+
+struct DiscrepancyOptions {
+  std::size_t blocks = 16;          // contiguous time blocks, odd ones held out
+  std::size_t max_rows = 12000;     // training / held-out rows used, evenly strided
+  double min_heldout_gain = 0.02;   // held-out RMS must fall by ≥ 2 %
+  double min_t = 3.0;               // … in most held-out blocks (t of the MSE drop)
+  std::size_t max_findings = 4;
+  std::vector<EffectId> effects;    // candidates; empty: every implemented one
+};
+
+using Params = std::vector<std::pair<std::string, double>>;
+
+struct Finding {
+  EffectId effect{};
+  double confidence = 0.0;   // 0…1
+  std::string where;         // where the residual was structured
+  std::string explanation;   // one plain sentence
+  Params params;             // the effect's parameters (SI)
+  double rmse_before_Nm = 0.0, rmse_after_Nm = 0.0;                  // training rows
+  double heldout_rmse_before_Nm = 0.0, heldout_rmse_after_Nm = 0.0;  // held-out rows
+  double bic_before = 0.0, bic_after = 0.0;
+  double t_stat = 0.0;       // held-out blocks' mean-square drop, t
+};
+
+struct ModelSummary {
+  Params params;             // Eq. 6 names, then "<effect>.<name>"
+  double rmse_Nm = 0.0;      // training rows
+  double heldout_rmse_Nm = 0.0;
+  double bic = 0.0;
+};
+
+struct CandidateScore {      // every candidate of every round, for the report
+  int round = 0;
+  EffectId effect{};
+  double heldout_gain = 0.0;  // 1 − RMS_after / RMS_before on held-out rows
+  double t_stat = 0.0;
+  bool kept = false;
+};
+
+struct DiscrepancyResult {
+  ModelSummary base, final_model;
+  std::vector<Finding> findings;  // empty: nothing is missing
+  std::vector<CandidateScore> candidates;
+  std::size_t train_rows = 0, heldout_rows = 0;
+  double seconds = 0.0;
+};
+
+// The effects discover() can fit today.
+std::vector<EffectId> implemented_effects();
+
+// Throws fit::FitDataError when the data cannot identify the base model.
+DiscrepancyResult discover(const fit::FitData& data, const DiscrepancyOptions& opt = {});
+
+// {"base": …, "findings": […], "final": …} with the names issue 5 fixes.
+std::string to_json(const DiscrepancyResult& r, int indent = 2);
+
+}  // namespace knoblab::discovery

@@ -1,0 +1,368 @@
+#include "candidates.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "knoblab/model/periodogram.hpp"
+
+namespace knoblab::discovery::detail {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+template <typename... A>
+std::string format(const char* f, A... a) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, f, a...);
+  return buf;
+}
+
+// Least squares of the residual on the given columns (one per regressor).
+std::vector<double> regress(const std::vector<std::vector<double>>& cols,
+                            const std::vector<double>& r, double* sse = nullptr) {
+  const auto n = static_cast<Eigen::Index>(r.size());
+  const auto k = static_cast<Eigen::Index>(cols.size());
+  Eigen::MatrixXd X(n, k);
+  for (Eigen::Index c = 0; c < k; ++c)
+    for (Eigen::Index i = 0; i < n; ++i) X(i, c) = cols[static_cast<std::size_t>(c)][static_cast<std::size_t>(i)];
+  const Eigen::Map<const Eigen::VectorXd> y(r.data(), n);
+  const Eigen::VectorXd beta = X.colPivHouseholderQr().solve(y);
+  if (sse) *sse = (y - X * beta).squaredNorm();
+  return {beta.data(), beta.data() + k};
+}
+
+double quantile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  const auto k = static_cast<std::ptrdiff_t>(q * static_cast<double>(v.size() - 1));
+  std::nth_element(v.begin(), v.begin() + k, v.end());
+  return v[static_cast<std::size_t>(k)];
+}
+
+// y binned over position (mean per bin), for a periodogram.
+struct Binned {
+  std::vector<double> theta, y;
+  double range = 0.0;
+};
+Binned bin(const fit::FitData& d, std::span<const std::size_t> rows, const std::vector<double>& y,
+           std::size_t nbins = 1024) {
+  double lo = d.theta[rows[0]], hi = lo;
+  for (const std::size_t i : rows) lo = std::min(lo, d.theta[i]), hi = std::max(hi, d.theta[i]);
+  Binned b;
+  b.range = hi - lo;
+  if (!(b.range > 0)) return b;
+  std::vector<double> st(nbins, 0.0), sy(nbins, 0.0), c(nbins, 0.0);
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    const double th = d.theta[rows[j]];
+    const auto k = std::min(nbins - 1, static_cast<std::size_t>((th - lo) / b.range * static_cast<double>(nbins)));
+    st[k] += th, sy[k] += y[j], c[k] += 1.0;
+  }
+  for (std::size_t k = 0; k < nbins; ++k) {
+    if (c[k] == 0) continue;
+    b.theta.push_back(st[k] / c[k]);
+    b.y.push_back(sy[k] / c[k]);
+  }
+  return b;
+}
+
+// The strongest sinusoid of y over position, frequencies (cycles/rev) at
+// least `f_min`, skipping ±2 resolutions around each of `avoid`.
+std::optional<model::SinusoidFit> strongest_periodic(const Binned& b, double f_min,
+                                                     const std::vector<double>& avoid) {
+  if (b.theta.size() < 16 || !(b.range > 0)) return std::nullopt;
+  const double resolution = 2 * kPi / b.range;
+  const double f_hi = 0.25 * static_cast<double>(b.theta.size()) * resolution;  // 4 bins a cycle
+  const double f_lo = std::max(f_min, 0.5 * resolution);
+  if (!(f_hi > f_lo)) return std::nullopt;
+  const model::AngularPeriodogram pg =
+      model::angular_periodogram(b.theta, b.y, f_lo, f_hi, resolution / 4);
+  double best = -1.0, f_best = 0.0;
+  for (std::size_t k = 0; k < pg.frequency.size(); ++k) {
+    const double f = pg.frequency[k];
+    bool skip = false;
+    for (const double a : avoid) skip = skip || std::abs(f - a) < 2 * resolution;
+    if (!skip && pg.power[k] > best) best = pg.power[k], f_best = f;
+  }
+  if (best <= 0) return std::nullopt;
+  return model::fit_sinusoid(b.theta, b.y, f_best);
+}
+
+std::vector<double> column(std::span<const std::size_t> rows,
+                           auto f) {
+  std::vector<double> c(rows.size());
+  for (std::size_t j = 0; j < rows.size(); ++j) c[j] = f(rows[j]);
+  return c;
+}
+
+double sgn(double x) { return x > 0 ? 1.0 : x < 0 ? -1.0 : 0.0; }
+
+ExtendedModel with(const ExtendedModel& m, ActiveEffect e) {
+  ExtendedModel out = m;
+  out.effects.push_back(std::move(e));
+  return out;
+}
+
+// Searches an operator's setting on a grid (short fits), then fits the best
+// one fully.
+std::optional<ExtendedModel> grid_search(EffectId id, const std::vector<double>& settings,
+                                         const ExtendedModel& m, const fit::FitData& d,
+                                         std::span<const std::size_t> train) {
+  std::optional<ExtendedModel> best;
+  double best_rmse = 0.0;
+  for (const double s : settings) {
+    ExtendedModel c = with(m, {id, {}, s});
+    const FitReport r = fit_extended(c, d, train, 6);
+    if (!best || r.rmse < best_rmse) best = std::move(c), best_rmse = r.rmse;
+  }
+  if (best) fit_extended(*best, d, train, 40);
+  return best;
+}
+
+double base_period(const ExtendedModel& m) { return std::abs(m.base[model::kP_pos]); }
+bool base_has_detents(const ExtendedModel& m) {
+  return m.base_fitted.size() > model::kA_pos && m.base_fitted[model::kA_pos];
+}
+
+}  // namespace
+
+std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& m,
+                                           const fit::FitData& d,
+                                           std::span<const std::size_t> train,
+                                           const std::vector<double>& r) {
+  if (train.size() < 50) return std::nullopt;
+  auto theta = [&](std::size_t i) { return d.theta[i]; };
+  std::optional<ExtendedModel> c;
+  switch (id) {
+    case EffectId::Offset: {
+      double mean = 0.0;
+      for (const double v : r) mean += v / static_cast<double>(r.size());
+      c = with(m, {id, {mean}, 0.0});
+      break;
+    }
+    case EffectId::Gravity: {
+      const auto b = regress({column(train, [&](std::size_t i) { return std::sin(theta(i)); }),
+                              column(train, [&](std::size_t i) { return std::cos(theta(i)); })},
+                             r);
+      c = with(m, {id, {std::hypot(b[0], b[1]), std::atan2(b[1], b[0])}, 0.0});
+      break;
+    }
+    case EffectId::Spring: {
+      double mean = 0.0;
+      for (const std::size_t i : train) mean += d.theta[i] / static_cast<double>(train.size());
+      const auto b = regress({column(train, [&](std::size_t i) { return d.theta[i] - mean; }),
+                              column(train, [&](std::size_t i) { return std::pow(d.theta[i] - mean, 3); })},
+                             r);
+      c = with(m, {id, {b[0], b[1]}, mean});
+      break;
+    }
+    case EffectId::PeriodicTorque: {
+      // Away from the detents and their harmonics, and above once per
+      // revolution (gravity's).
+      std::vector<double> avoid;
+      if (base_has_detents(m)) {
+        for (std::size_t k = 1; k <= kShapeHarmonics + 1; ++k) avoid.push_back(static_cast<double>(k) / base_period(m));
+      }
+      const auto peak = strongest_periodic(bin(d, train, r), 1.5, avoid);
+      if (!peak) return std::nullopt;
+      c = with(m, {id, {peak->amplitude, 1.0 / peak->frequency, peak->phase}, 0.0});
+      break;
+    }
+    case EffectId::DetentShape:
+      if (!base_has_detents(m)) return std::nullopt;
+      c = with(m, {id, std::vector<double>(2 * (kShapeHarmonics - 1), 0.0), 0.0});
+      break;
+    case EffectId::Stribeck: {
+      std::vector<double> speed;
+      for (const std::size_t i : train) speed.push_back(std::abs(d.omega[i]));
+      const double s95 = quantile(speed, 0.95);
+      double best_sse = 0.0;
+      std::vector<double> start;
+      for (const double f : {0.02, 0.05, 0.1, 0.2, 0.4}) {
+        const double vs = f * s95;
+        double sse = 0.0;
+        const auto b = regress({column(train, [&](std::size_t i) {
+                                 const double x = d.omega[i] / vs;
+                                 return sgn(d.omega[i]) * std::exp(-x * x);
+                               })},
+                               r, &sse);
+        if (start.empty() || sse < best_sse) best_sse = sse, start = {b[0], vs};
+      }
+      c = with(m, {id, start, 0.0});
+      break;
+    }
+    case EffectId::NonlinearDamping: {
+      double best_sse = 0.0;
+      std::vector<double> start;
+      for (const double p : {0.5, 2.0}) {
+        double sse = 0.0;
+        const auto b = regress({column(train, [&](std::size_t i) {
+                                 return sgn(d.omega[i]) * std::pow(std::abs(d.omega[i]), p);
+                               })},
+                               r, &sse);
+        if (start.empty() || sse < best_sse) best_sse = sse, start = {b[0], p};
+      }
+      c = with(m, {id, start, 0.0});
+      break;
+    }
+    case EffectId::PositionFriction: {
+      std::vector<double> rs(r.size());
+      for (std::size_t j = 0; j < r.size(); ++j) rs[j] = r[j] * sgn(d.omega[train[j]]);
+      const auto peak = strongest_periodic(bin(d, train, rs), 0.5, {});
+      if (!peak) return std::nullopt;
+      c = with(m, {id, {peak->amplitude, 1.0 / peak->frequency, peak->phase}, 0.0});
+      break;
+    }
+    case EffectId::Drift: {
+      double t_mid = 0.0;
+      for (const std::size_t i : train) t_mid += d.t[i] / static_cast<double>(train.size());
+      const auto b = regress({column(train, [&](std::size_t i) { return sgn(d.omega[i]) * (d.t[i] - t_mid); })}, r);
+      c = with(m, {id, {b[0]}, t_mid});
+      break;
+    }
+    case EffectId::TimeDelay:
+      return grid_search(id, {-5e-3, -2e-3, -1e-3, -5e-4, -2e-4, 2e-4, 5e-4, 1e-3, 2e-3, 5e-3}, m,
+                         d, train);
+    case EffectId::Saturation: {
+      // Only when the torque has flat tops: a share of samples at its extreme.
+      double top = 0.0;
+      for (const std::size_t i : train) top = std::max(top, std::abs(d.torque[i]));
+      std::size_t at_top = 0;
+      for (const std::size_t i : train) at_top += std::abs(d.torque[i]) > 0.995 * top ? 1 : 0;
+      if (at_top < train.size() / 200 || !(top > 0)) return std::nullopt;
+      c = with(m, {id, {}, top});
+      break;
+    }
+    case EffectId::Backlash:
+      return grid_search(id, {0.5e-3, 1e-3, 2e-3, 4e-3, 8e-3, 16e-3}, m, d, train);
+    case EffectId::Hysteresis:
+      return grid_search(id, {1e-4, 3e-4, 1e-3, 3e-3, 1e-2}, m, d, train);
+    default: return std::nullopt;
+  }
+  fit_extended(*c, d, train, 40);
+  return c;
+}
+
+Params report_params(const ActiveEffect& e, const ExtendedModel& m) {
+  const auto& q = e.params;
+  auto periodic = [&](double A, double P, double S) {
+    const double phase = std::remainder(S + (A < 0 ? kPi : 0.0), 2 * kPi);
+    return Params{{"amplitude_Nm", std::abs(A)},
+                  {"period_rad", 2 * kPi * std::abs(P)},
+                  {"cycles_per_rev", 1.0 / std::abs(P)},
+                  {"phase_rad", phase}};
+  };
+  switch (e.id) {
+    case EffectId::Offset: return {{"offset_Nm", q[0]}};
+    case EffectId::Gravity: {
+      const double phase = std::remainder(q[1] + (q[0] < 0 ? kPi : 0.0), 2 * kPi);
+      return {{"amplitude_Nm", std::abs(q[0])}, {"phase_rad", phase}};
+    }
+    case EffectId::Spring:
+      return {{"stiffness_Nm_per_rad", q[0]}, {"cubic_Nm_per_rad3", q[1]}, {"centre_rad", e.setting}};
+    case EffectId::PeriodicTorque: return periodic(q[0], q[1], q[2]);
+    case EffectId::DetentShape: {
+      Params p{{"cycles_per_rev", 1.0 / base_period(m)}};
+      for (std::size_t k = 0; k + 2 <= kShapeHarmonics; ++k) {
+        p.emplace_back("h" + std::to_string(k + 2) + "_amplitude_Nm", std::hypot(q[2 * k], q[2 * k + 1]));
+      }
+      for (std::size_t k = 0; k + 2 <= kShapeHarmonics; ++k) {
+        p.emplace_back("a" + std::to_string(k + 2) + "_Nm", q[2 * k]);
+        p.emplace_back("b" + std::to_string(k + 2) + "_Nm", q[2 * k + 1]);
+      }
+      return p;
+    }
+    case EffectId::Stribeck:
+      return {{"static_excess_Nm", q[0]}, {"stribeck_velocity_rad_s", std::abs(q[1])}};
+    case EffectId::NonlinearDamping: return {{"coefficient", q[0]}, {"exponent", q[1]}};
+    case EffectId::PositionFriction: {
+      Params p = periodic(q[0], q[1], q[2]);
+      p[0].first = "depth_Nm";
+      return p;
+    }
+    case EffectId::Drift: return {{"rate_Nm_per_s", q[0]}, {"t0_s", e.setting}};
+    case EffectId::TimeDelay: return {{"delay_s", e.setting}};
+    case EffectId::Saturation: return {{"limit_Nm", e.setting}};
+    case EffectId::Backlash: return {{"width_rad", e.setting}};
+    case EffectId::Hysteresis: return {{"presliding_angle_rad", e.setting}};
+    default: return {};
+  }
+}
+
+Explanation explain(const ActiveEffect& e, const ExtendedModel& m, double before, double after) {
+  const Params p = report_params(e, m);
+  auto v = [&](const char* name) {
+    for (const auto& [n, x] : p)
+      if (n == name) return x;
+    return 0.0;
+  };
+  const std::string gain = format(" Held-out RMS %.3g → %.3g mN·m.", before * 1e3, after * 1e3);
+  constexpr double deg = 180.0 / kPi;
+  switch (e.id) {
+    case EffectId::Offset:
+      return {"everywhere", format("The torque sits %.3g mN·m off zero at every position and speed: "
+                                   "a constant bias (offset), sensor zero or preload.",
+                                   v("offset_Nm") * 1e3) + gain};
+    case EffectId::Gravity:
+      return {"over position, once per revolution",
+              format("The residual repeats once per revolution with %.3g mN·m amplitude: an "
+                     "unbalanced mass or tilted axis (gravity).",
+                     v("amplitude_Nm") * 1e3) + gain};
+    case EffectId::Spring:
+      return {"over position, proportional to angle",
+              format("The residual grows with angle, %.3g mN·m per radian: a restoring spring.",
+                     v("stiffness_Nm_per_rad") * 1e3) + gain};
+    case EffectId::PeriodicTorque:
+      return {format("over position, %.3g cycles/rev", v("cycles_per_rev")),
+              format("A second position-periodic torque at %.3g cycles per revolution (period "
+                     "%.3g°), %.3g mN·m, unrelated to the detents: cogging, a second detent track "
+                     "or screw ripple (periodic_torque).",
+                     v("cycles_per_rev"), v("period_rad") * deg, v("amplitude_Nm") * 1e3) + gain};
+    case EffectId::DetentShape:
+      return {format("over position, harmonics of the %.3g detents/rev", v("cycles_per_rev")),
+              format("The detents are not sinusoidal: their 2nd and 3rd harmonics are %.3g and "
+                     "%.3g mN·m (detent_shape).",
+                     v("h2_amplitude_Nm") * 1e3, v("h3_amplitude_Nm") * 1e3) + gain};
+    case EffectId::Stribeck:
+      return {format("near zero speed (|θ̇| below about %.3g rad/s)", 2 * v("stribeck_velocity_rad_s")),
+              format("Friction is %.3g mN·m above its Coulomb level near zero speed and falls off "
+                     "over %.3g rad/s: Stribeck friction.",
+                     v("static_excess_Nm") * 1e3, v("stribeck_velocity_rad_s")) + gain};
+    case EffectId::NonlinearDamping:
+      return {"over velocity, not proportional to it",
+              format("Damping grows as |θ̇|^%.2g, not linearly: nonlinear damping.", v("exponent")) + gain};
+    case EffectId::PositionFriction:
+      return {format("over position, sign of velocity, %.3g cycles/rev", v("cycles_per_rev")),
+              format("The friction level changes with position, ±%.3g mN·m at %.3g cycles per "
+                     "revolution (position_friction).",
+                     v("depth_Nm") * 1e3, v("cycles_per_rev")) + gain};
+    case EffectId::Drift:
+      return {"over time",
+              format("The friction level changes during the recording by %.3g mN·m per second "
+                     "(drift: warming or wear).",
+                     v("rate_Nm_per_s") * 1e3) + gain};
+    case EffectId::TimeDelay:
+      return {"against the motion's derivatives (a lag)",
+              format("The torque channel is %.3g ms %s the motion channels (time_delay).",
+                     std::abs(v("delay_s")) * 1e3, v("delay_s") > 0 ? "behind" : "ahead of") + gain};
+    case EffectId::Saturation:
+      return {"at the torque extremes",
+              format("The torque is clipped at ±%.3g mN·m (sensor saturation).", v("limit_Nm") * 1e3) + gain};
+    case EffectId::Backlash:
+      return {"after reversals",
+              format("After every reversal the torque falls toward zero for %.3g° of travel: "
+                     "backlash (lost motion) of %.3g mrad between the drive and the detent "
+                     "mechanism.",
+                     v("width_rad") * deg, v("width_rad") * 1e3) + gain};
+    case EffectId::Hysteresis:
+      return {"after reversals",
+              format("After a reversal friction turns over within about %.3g mrad instead of "
+                     "jumping: presliding hysteresis (Dahl).",
+                     3e3 * v("presliding_angle_rad")) + gain};
+    default: return {"", std::string(effect_name(e.id)) + "." + gain};
+  }
+}
+
+}  // namespace knoblab::discovery::detail

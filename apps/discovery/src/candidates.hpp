@@ -1,0 +1,33 @@
+// Candidate effects: starting values from the current residual, the joint
+// fit, the parameters reported and the sentence that explains a finding.
+// Internal to knoblab_discovery.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "extended_model.hpp"
+#include "knoblab/discovery/discrepancy.hpp"
+
+namespace knoblab::discovery::detail {
+
+// The current model with effect `id` added and fitted on the training rows
+// (all parameters jointly), or nothing when the effect cannot apply (no
+// detents for a detent shape, no flat tops for clipping, …).
+std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& current,
+                                           const fit::FitData& d,
+                                           std::span<const std::size_t> train,
+                                           const std::vector<double>& residual);
+
+// An effect's parameters as reported (SI; periods also as cycles/rev).
+Params report_params(const ActiveEffect& e, const ExtendedModel& m);
+
+struct Explanation {
+  std::string where, sentence;
+};
+Explanation explain(const ActiveEffect& e, const ExtendedModel& m, double heldout_before,
+                    double heldout_after);
+
+}  // namespace knoblab::discovery::detail

@@ -1,0 +1,229 @@
+// discover(): base fit, candidate effects scored on held-out blocks, greedy
+// selection (see discrepancy.hpp).
+#include <Eigen/Dense>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <numeric>
+
+#include "candidates.hpp"
+#include "extended_model.hpp"
+#include "knoblab/discovery/discrepancy.hpp"
+#include "knoblab/fit/knob_fit.hpp"
+
+namespace knoblab::discovery {
+
+namespace {
+
+using detail::ActiveEffect;
+using detail::ExtendedModel;
+
+struct Split {
+  std::vector<std::size_t> train, held;
+  std::vector<std::size_t> held_block;  // per held row: its block (0 … B/2 − 1)
+  std::size_t held_blocks = 0;
+};
+
+// Contiguous time blocks; even ones train, odd ones are held out; each side
+// strided evenly down to max_rows.
+Split split_rows(const fit::FitData& d, const std::vector<char>& usable,
+                 const DiscrepancyOptions& opt) {
+  const std::size_t n = d.size(), B = std::max<std::size_t>(4, opt.blocks);
+  std::vector<std::size_t> train, held, held_block;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!usable[i]) continue;
+    const std::size_t b = i * B / n;
+    if (b % 2 == 0) {
+      train.push_back(i);
+    } else {
+      held.push_back(i);
+      held_block.push_back(b / 2);
+    }
+  }
+  Split s;
+  s.held_blocks = B / 2;
+  const std::size_t st = std::max<std::size_t>(1, train.size() / opt.max_rows);
+  for (std::size_t j = 0; j < train.size(); j += st) s.train.push_back(train[j]);
+  const std::size_t sh = std::max<std::size_t>(1, held.size() / opt.max_rows);
+  for (std::size_t j = 0; j < held.size(); j += sh) {
+    s.held.push_back(held[j]);
+    s.held_block.push_back(held_block[j]);
+  }
+  return s;
+}
+
+fit::FitData subset(const fit::FitData& d, const std::vector<std::size_t>& rows) {
+  fit::FitData s;
+  s.rate_hz = d.rate_hz;
+  for (const std::size_t i : rows) {
+    s.t.push_back(d.t[i]);
+    s.theta.push_back(d.theta[i]);
+    s.omega.push_back(d.omega[i]);
+    s.alpha.push_back(d.alpha[i]);
+    s.torque.push_back(d.torque[i]);
+  }
+  return s;
+}
+
+struct Score {
+  double rmse_train = 0.0, rmse_held = 0.0, bic = 0.0;
+  std::vector<double> block_mse;
+};
+
+std::size_t free_count(const ExtendedModel& m) {
+  std::size_t k = 0;
+  for (const bool f : m.base_fitted) k += f ? 1 : 0;
+  for (const ActiveEffect& e : m.effects) k += e.params.size() + (e.params.empty() ? 1 : 0);
+  return k;
+}
+
+Score score(const ExtendedModel& m, const fit::FitData& d, const Split& s) {
+  Score out;
+  const std::vector<double> rt = detail::residuals(m, d, s.train);
+  double ss = 0.0;
+  for (const double v : rt) ss += v * v;
+  const double nt = static_cast<double>(rt.size());
+  out.rmse_train = std::sqrt(ss / nt);
+  out.bic = nt * std::log(ss / nt) + static_cast<double>(free_count(m)) * std::log(nt);
+  const std::vector<double> rh = detail::residuals(m, d, s.held);
+  std::vector<double> sum(s.held_blocks, 0.0), cnt(s.held_blocks, 0.0);
+  double sh = 0.0;
+  for (std::size_t j = 0; j < rh.size(); ++j) {
+    sh += rh[j] * rh[j];
+    sum[s.held_block[j]] += rh[j] * rh[j];
+    cnt[s.held_block[j]] += 1.0;
+  }
+  out.rmse_held = rh.empty() ? 0.0 : std::sqrt(sh / static_cast<double>(rh.size()));
+  for (std::size_t b = 0; b < s.held_blocks; ++b) {
+    if (cnt[b] > 0) out.block_mse.push_back(sum[b] / cnt[b]);
+  }
+  return out;
+}
+
+// t of the per-block mean-square drop from `before` to `after`.
+double t_of_drop(const Score& before, const Score& after) {
+  const std::size_t B = std::min(before.block_mse.size(), after.block_mse.size());
+  if (B < 2) return 0.0;
+  std::vector<double> drop(B);
+  for (std::size_t b = 0; b < B; ++b) drop[b] = before.block_mse[b] - after.block_mse[b];
+  const double mean = std::accumulate(drop.begin(), drop.end(), 0.0) / static_cast<double>(B);
+  double var = 0.0;
+  for (const double x : drop) var += (x - mean) * (x - mean);
+  var /= static_cast<double>(B - 1);
+  if (var <= 0.0) return mean > 0 ? 1e9 : 0.0;
+  return mean / std::sqrt(var / static_cast<double>(B));
+}
+
+Params summary_params(const ExtendedModel& m) {
+  Params out;
+  for (std::size_t k = 0; k < m.base.size(); ++k) {
+    out.emplace_back(std::string(model::kThesisParamNames[k]), m.base[k]);
+  }
+  for (const ActiveEffect& e : m.effects) {
+    for (const auto& [name, value] : detail::report_params(e, m)) {
+      out.emplace_back(std::string(effect_name(e.id)) + "." + name, value);
+    }
+  }
+  return out;
+}
+
+ModelSummary summary_of(const ExtendedModel& m, const Score& s) {
+  return {summary_params(m), s.rmse_train, s.rmse_held, s.bic};
+}
+
+}  // namespace
+
+std::vector<EffectId> implemented_effects() {
+  return {EffectId::Offset,           EffectId::Gravity,    EffectId::Spring,
+          EffectId::PeriodicTorque,   EffectId::DetentShape, EffectId::Stribeck,
+          EffectId::NonlinearDamping, EffectId::PositionFriction, EffectId::Drift,
+          EffectId::TimeDelay,        EffectId::Saturation, EffectId::Backlash,
+          EffectId::Hysteresis};
+}
+
+DiscrepancyResult discover(const fit::FitData& d, const DiscrepancyOptions& opt) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (d.size() < 200) throw fit::FitDataError("too few samples for discrepancy discovery");
+  DiscrepancyResult out;
+
+  // Base model on the training blocks, as the characterization fits it: its
+  // detent search, its stick band (inside which the sliding law does not
+  // hold, so those samples are left out of the discovery too).
+  std::vector<char> usable(d.size(), 1);
+  Split s = split_rows(d, usable, opt);
+  const fit::FitResult base_fit = fit::fit_knob(subset(d, s.train));
+  if (base_fit.stick) {
+    for (std::size_t i = 0; i < d.size(); ++i) usable[i] = std::abs(d.omega[i]) >= base_fit.stick->dv;
+    s = split_rows(d, usable, opt);
+  }
+  ExtendedModel m;
+  m.base = base_fit.params;
+  m.base_fitted = base_fit.fitted;
+  detail::fit_extended(m, d, s.train);
+  Score current = score(m, d, s);
+  out.base = summary_of(m, current);
+  out.train_rows = s.train.size();
+  out.heldout_rows = s.held.size();
+
+  const std::vector<EffectId> pool = opt.effects.empty() ? implemented_effects() : opt.effects;
+  for (int round = 0; out.findings.size() < opt.max_findings; ++round) {
+    const std::vector<double> r_train = detail::residuals(m, d, s.train);
+    struct Tried {
+      ExtendedModel model;
+      Score score;
+      double gain = 0.0, t = 0.0;
+    };
+    std::vector<Tried> tried;
+    for (const EffectId id : pool) {
+      if (m.has(id)) continue;
+      std::optional<ExtendedModel> fitted = detail::fit_candidate(id, m, d, s.train, r_train);
+      if (!fitted) continue;
+      Tried t{std::move(*fitted), {}, 0.0, 0.0};
+      t.score = score(t.model, d, s);
+      t.gain = 1.0 - t.score.rmse_held / current.rmse_held;
+      t.t = t_of_drop(current, t.score);
+      out.candidates.push_back({round, id, t.gain, t.t, false});
+      tried.push_back(std::move(t));
+    }
+    if (tried.empty()) break;
+    std::sort(tried.begin(), tried.end(), [](const Tried& a, const Tried& b) { return a.gain > b.gain; });
+    const Tried& best = tried.front();
+    const bool significant = best.gain >= opt.min_heldout_gain && best.t >= opt.min_t &&
+                             best.score.bic < current.bic;
+    if (!significant) break;
+    const ActiveEffect& added = best.model.effects.back();
+    for (CandidateScore& c : out.candidates)
+      if (c.round == round && c.effect == added.id) c.kept = true;
+
+    Finding f;
+    f.effect = added.id;
+    f.params = detail::report_params(added, best.model);
+    f.rmse_before_Nm = current.rmse_train;
+    f.rmse_after_Nm = best.score.rmse_train;
+    f.heldout_rmse_before_Nm = current.rmse_held;
+    f.heldout_rmse_after_Nm = best.score.rmse_held;
+    f.bic_before = current.bic;
+    f.bic_after = best.score.bic;
+    f.t_stat = best.t;
+    // Confidence: how consistent the held-out gain is (t), and how clearly
+    // this effect beat the runner-up (another effect explaining the same
+    // residual nearly as well makes the name less certain).
+    const double runner_up = tried.size() > 1 ? std::max(0.0, tried[1].gain) : 0.0;
+    const double margin = std::clamp(1.0 - runner_up / best.gain, 0.0, 1.0);
+    const double consistency = 1.0 - std::exp(-best.t / 4.0);
+    f.confidence = std::clamp(consistency * (0.5 + 0.5 * margin), 0.0, 1.0);
+    const detail::Explanation ex = detail::explain(added, best.model, current.rmse_held, best.score.rmse_held);
+    f.where = ex.where;
+    f.explanation = ex.sentence;
+    out.findings.push_back(std::move(f));
+
+    m = best.model;
+    current = best.score;
+  }
+  out.final_model = summary_of(m, current);
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+}  // namespace knoblab::discovery

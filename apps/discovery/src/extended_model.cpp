@@ -1,0 +1,206 @@
+#include "extended_model.hpp"
+
+#include <ceres/ceres.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace knoblab::discovery::detail {
+
+std::vector<std::string> param_names(EffectId id) {
+  switch (id) {
+    case EffectId::Offset: return {"offset_Nm"};
+    case EffectId::Gravity: return {"amplitude_Nm", "phase_rad"};
+    case EffectId::Spring: return {"stiffness_Nm_per_rad", "cubic_Nm_per_rad3"};
+    case EffectId::PeriodicTorque: return {"amplitude_Nm", "P", "phase_rad"};
+    case EffectId::DetentShape: {
+      std::vector<std::string> n;
+      for (std::size_t k = 2; k <= kShapeHarmonics; ++k) {
+        n.push_back("a" + std::to_string(k) + "_Nm");
+        n.push_back("b" + std::to_string(k) + "_Nm");
+      }
+      return n;
+    }
+    case EffectId::Stribeck: return {"static_excess_Nm", "stribeck_velocity_rad_s"};
+    case EffectId::NonlinearDamping: return {"coefficient", "exponent"};
+    case EffectId::PositionFriction: return {"depth_Nm", "P", "phase_rad"};
+    case EffectId::Drift: return {"rate_Nm_per_s"};
+    case EffectId::Endstop: return {"stiffness_Nm_per_rad"};
+    default: return {};  // operators: their setting is reported instead
+  }
+}
+
+bool ExtendedModel::has(EffectId id) const { return find(id) != nullptr; }
+
+const ActiveEffect* ExtendedModel::find(EffectId id) const {
+  for (const ActiveEffect& e : effects)
+    if (e.id == id) return &e;
+  return nullptr;
+}
+
+std::vector<double> ExtendedModel::flat() const {
+  std::vector<double> p = base;
+  for (const ActiveEffect& e : effects) p.insert(p.end(), e.params.begin(), e.params.end());
+  return p;
+}
+
+void ExtendedModel::unflatten(std::span<const double> p) {
+  std::size_t k = 0;
+  for (double& v : base) v = p[k++];
+  for (ActiveEffect& e : effects)
+    for (double& v : e.params) v = p[k++];
+}
+
+std::size_t ExtendedModel::size() const { return flat().size(); }
+
+Layout layout_of(const ExtendedModel& m) {
+  Layout L;
+  int at = static_cast<int>(m.base.size());
+  for (const ActiveEffect& e : m.effects) {
+    L.effects.push_back({e.id, {}, e.setting});
+    L.offset.push_back(at);
+    at += static_cast<int>(e.params.size());
+  }
+  L.base_detents = m.base_fitted.size() > model::kA_pos ? m.base_fitted[model::kA_pos] : true;
+  if (const ActiveEffect* d = m.find(EffectId::Drift)) L.t_mid = d->setting;
+  return L;
+}
+
+std::vector<RowInputs> row_inputs(const fit::FitData& d, std::span<const std::size_t> rows,
+                                  const ExtendedModel& m) {
+  const std::size_t n = d.size();
+  // Delay: the torque channel lags the motion by δ, so the model at time t
+  // sees the motion at t − δ (linear interpolation; clamped at the ends).
+  const ActiveEffect* delay = m.find(EffectId::TimeDelay);
+  const double shift = delay ? delay->setting * d.rate_hz : 0.0;  // samples
+  auto at = [&](const std::vector<double>& v, std::size_t i) {
+    if (shift == 0.0) return v[i];
+    const double x = std::clamp(static_cast<double>(i) - shift, 0.0, static_cast<double>(n - 1));
+    const auto lo = static_cast<std::size_t>(x);
+    const std::size_t hi = std::min(lo + 1, n - 1);
+    const double f = x - static_cast<double>(lo);
+    return v[lo] + f * (v[hi] - v[lo]);
+  };
+
+  // Operators with memory run over every sample in time order.
+  std::vector<double> knob_shift, z;
+  std::vector<char> contact;
+  if (const ActiveEffect* b = m.find(EffectId::Backlash)) {
+    model::Backlash play;
+    play.width = b->setting;
+    play.reset(d.theta[0]);
+    knob_shift.resize(n);
+    contact.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      knob_shift[i] = play.update(d.theta[i]) - d.theta[i];
+      contact[i] = play.contact ? 1 : 0;
+    }
+  }
+  if (const ActiveEffect* h = m.find(EffectId::Hysteresis)) {
+    model::DahlFriction dahl;
+    dahl.presliding = h->setting;
+    dahl.reset(d.omega[0] > 0 ? 1.0 : d.omega[0] < 0 ? -1.0 : 0.0);
+    z.resize(n);
+    z[0] = dahl.z;
+    for (std::size_t i = 1; i < n; ++i) z[i] = dahl.update(d.theta[i] - d.theta[i - 1]);
+  }
+
+  std::vector<RowInputs> out;
+  out.reserve(rows.size());
+  for (const std::size_t i : rows) {
+    RowInputs r;
+    r.t = d.t[i];
+    r.theta = at(d.theta, i);
+    r.omega = at(d.omega, i);
+    r.alpha = at(d.alpha, i);
+    if (!knob_shift.empty()) r.theta_shift = knob_shift[i], r.contact = contact[i] != 0;
+    if (!z.empty()) r.z = z[i];
+    out.push_back(r);
+  }
+  return out;
+}
+
+namespace {
+
+constexpr std::size_t kChunk = 256;
+
+struct ChunkCost {
+  const Layout* layout;
+  std::span<const RowInputs> rows;
+  std::span<const double> torque;
+  template <typename T>
+  bool operator()(const T* p, T* residual) const {
+    for (std::size_t j = 0; j < rows.size(); ++j) {
+      residual[j] = extended_torque(*layout, p, rows[j]) - T(torque[j]);
+    }
+    return true;
+  }
+};
+
+}  // namespace
+
+FitReport fit_extended(ExtendedModel& m, const fit::FitData& d, std::span<const std::size_t> rows,
+                       int max_iterations) {
+  std::vector<double> p = m.flat();
+  if (p.size() > static_cast<std::size_t>(kMaxParams))
+    throw std::invalid_argument("discrepancy: too many effect parameters in one model");
+  const std::size_t used = p.size();
+  p.resize(kMaxParams, 0.0);
+  const Layout L = layout_of(m);
+  const std::vector<RowInputs> in = row_inputs(d, rows, m);
+  std::vector<double> torque(rows.size());
+  for (std::size_t j = 0; j < rows.size(); ++j) torque[j] = d.torque[rows[j]];
+
+  ceres::Problem::Options po;
+  po.cost_function_ownership = ceres::TAKE_OWNERSHIP;
+  ceres::Problem problem(po);
+  for (std::size_t s = 0; s < in.size(); s += kChunk) {
+    const std::size_t len = std::min(kChunk, in.size() - s);
+    auto* cost = new ceres::AutoDiffCostFunction<ChunkCost, ceres::DYNAMIC, kMaxParams>(
+        new ChunkCost{&L, std::span(in).subspan(s, len), std::span<const double>(torque).subspan(s, len)},
+        static_cast<int>(len));
+    problem.AddResidualBlock(cost, nullptr, p.data());
+  }
+  std::vector<int> held;
+  for (std::size_t k = 0; k < static_cast<std::size_t>(kMaxParams); ++k) {
+    const bool base_held = k < m.base_fitted.size() && !m.base_fitted[k];
+    if (k >= used || base_held) held.push_back(static_cast<int>(k));
+  }
+  if (!held.empty()) problem.SetManifold(p.data(), new ceres::SubsetManifold(kMaxParams, held));
+
+  ceres::Solver::Options so;
+  so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
+  so.max_num_iterations = max_iterations;
+  so.num_threads = 2;
+  so.function_tolerance = 1e-10;
+  so.parameter_tolerance = 1e-10;
+  so.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(so, &problem, &summary);
+  FitReport out;
+  out.iterations = summary.num_successful_steps + summary.num_unsuccessful_steps;
+  if (summary.IsSolutionUsable()) {
+    p.resize(used);
+    m.unflatten(p);
+  }
+  const std::vector<double> r = residuals(m, d, rows);
+  double ss = 0.0;
+  for (const double v : r) ss += v * v;
+  out.rmse = rows.empty() ? 0.0 : std::sqrt(ss / static_cast<double>(rows.size()));
+  return out;
+}
+
+std::vector<double> residuals(const ExtendedModel& m, const fit::FitData& d,
+                              std::span<const std::size_t> rows) {
+  const Layout L = layout_of(m);
+  const std::vector<double> p = m.flat();
+  const std::vector<RowInputs> in = row_inputs(d, rows, m);
+  std::vector<double> r(rows.size());
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    r[j] = d.torque[rows[j]] - extended_torque(L, p.data(), in[j]);
+  }
+  return r;
+}
+
+}  // namespace knoblab::discovery::detail

@@ -1,0 +1,164 @@
+// The thesis model (Eq. 6) plus effects from the library: its parameter
+// layout, per-row inputs and torque (templated for Ceres autodiff), and the
+// fit. Internal to knoblab_discovery.
+#pragma once
+
+#include <cstddef>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "knoblab/discovery/effects.hpp"
+#include "knoblab/fit/fit_data.hpp"
+#include "knoblab/model/effects.hpp"
+#include "knoblab/model/models.hpp"
+
+namespace knoblab::discovery::detail {
+
+inline constexpr int kMaxParams = 24;  // Eq. 6's 8 and room for effects
+inline constexpr std::size_t kShapeHarmonics = 4;  // detent_shape: harmonics 2 … 4
+
+// An effect in the model: continuous parameters (fitted by Ceres) and, for
+// the operators, a setting found by search on a grid (backlash width,
+// presliding angle, delay, clip limit, spring centre, drift's t0).
+struct ActiveEffect {
+  EffectId id{};
+  std::vector<double> params;
+  double setting = 0.0;
+};
+
+// Names of an effect's continuous parameters, in order, as reported.
+std::vector<std::string> param_names(EffectId id);
+
+struct ExtendedModel {
+  std::vector<double> base;  // Eq. 6, fit order
+  std::vector<bool> base_fitted;
+  std::vector<ActiveEffect> effects;
+
+  bool has(EffectId id) const;
+  const ActiveEffect* find(EffectId id) const;
+  std::vector<double> flat() const;   // base then every effect's params
+  void unflatten(std::span<const double> p);
+  std::size_t size() const;
+};
+
+// What the torque function reads for one row: the motion (delayed when a
+// time_delay is in the model), the knob's shift and contact under backlash,
+// the Dahl state under hysteresis.
+struct RowInputs {
+  double t = 0.0, theta = 0.0, omega = 0.0, alpha = 0.0;
+  double theta_shift = 0.0;  // backlash: knob − drive
+  bool contact = true;       // backlash: the drive moves the knob
+  double z = 0.0;            // hysteresis: friction state, −1 … 1
+};
+
+// Rows of `d` (indices `rows`) with the operator settings of `m` applied.
+// The operators run over the whole recording in time order, whatever rows
+// are asked for.
+std::vector<RowInputs> row_inputs(const fit::FitData& d, std::span<const std::size_t> rows,
+                                  const ExtendedModel& m);
+
+// Where each effect's parameters sit in the flat vector.
+struct Layout {
+  std::vector<ActiveEffect> effects;  // settings; params ignored
+  std::vector<int> offset;            // per effect
+  bool base_detents = true;
+  double t_mid = 0.0;                 // drift's reference time
+};
+Layout layout_of(const ExtendedModel& m);
+
+template <typename T>
+T extended_torque(const Layout& L, const T* p, const RowInputs& r) {
+  using std::cos;
+  using std::sin;
+  const model::ThesisModel<T> base = model::ThesisModel<T>::from_params(p);
+  T offset(0);
+  const ActiveEffect* hysteresis = nullptr;
+  const ActiveEffect* saturation = nullptr;
+  for (std::size_t e = 0; e < L.effects.size(); ++e) {
+    if (L.effects[e].id == EffectId::Offset) offset += p[L.offset[e]];
+    if (L.effects[e].id == EffectId::Hysteresis) hysteresis = &L.effects[e];
+    if (L.effects[e].id == EffectId::Saturation) saturation = &L.effects[e];
+  }
+  T tau = offset;
+  if (r.contact) {
+    const T theta = T(r.theta + r.theta_shift), omega(r.omega), alpha(r.alpha);
+    tau += base.inertia.torque(alpha);
+    if (hysteresis) {
+      // Coulomb as C·z (Dahl), viscous unchanged.
+      const T c = r.z >= 0 ? base.friction.C_pos : base.friction.C_neg;
+      const T b = omega > T(0) ? base.friction.B_pos : base.friction.B_neg;
+      tau += c * T(r.z) + b * omega;
+    } else {
+      tau += base.friction.torque(omega);
+    }
+    if (L.base_detents) tau += base.detents.torque(theta);
+    for (std::size_t e = 0; e < L.effects.size(); ++e) {
+      const T* q = p + L.offset[e];
+      switch (L.effects[e].id) {
+        case EffectId::Gravity: tau += model::OncePerRev<T>{q[0], q[1]}.torque(theta); break;
+        case EffectId::Spring: {
+          model::Spring<T> s;
+          s.K = q[0];
+          s.K3 = q[1];
+          s.theta0 = T(L.effects[e].setting);
+          tau += s.torque(theta);
+          break;
+        }
+        case EffectId::PeriodicTorque: {
+          model::Detents<T> w;
+          w.A = q[0];
+          w.P = q[1];
+          w.S = q[2];
+          tau += w.torque(theta);
+          break;
+        }
+        case EffectId::DetentShape: {
+          const T phi = theta / p[model::kP_pos] + p[model::kS_pos];
+          for (std::size_t k = 0; k + 2 <= kShapeHarmonics; ++k) {
+            const T kphi = T(static_cast<double>(k + 2)) * phi;
+            tau += q[2 * k] * sin(kphi) + q[2 * k + 1] * cos(kphi);
+          }
+          break;
+        }
+        case EffectId::Stribeck: tau += model::Stribeck<T>{q[0], q[1]}.torque(omega); break;
+        case EffectId::NonlinearDamping:
+          tau += model::PowerDamping<T>{q[0], q[1]}.torque(omega);
+          break;
+        case EffectId::PositionFriction:
+          tau += model::PositionFriction<T>{q[0], q[1], q[2]}.torque(theta, omega);
+          break;
+        case EffectId::Drift:
+          tau += model::FrictionDrift<T>{q[0], T(L.t_mid)}.torque(omega, T(r.t));
+          break;
+        case EffectId::Endstop: {
+          model::Walls<T> w;
+          w.lo = T(-L.effects[e].setting);
+          w.hi = T(L.effects[e].setting);
+          w.K = q[0];
+          tau += w.torque(theta, omega);
+          break;
+        }
+        default: break;  // operators: applied through the row inputs
+      }
+    }
+  }
+  if (saturation) tau = model::saturate(tau, T(saturation->setting));
+  return tau;
+}
+
+// Least squares of the extended model over the rows (Ceres, autodiff, every
+// parameter of the flat vector free except held base ones). Returns the RMS
+// residual over the rows.
+struct FitReport {
+  double rmse = 0.0;
+  int iterations = 0;
+};
+FitReport fit_extended(ExtendedModel& m, const fit::FitData& d, std::span<const std::size_t> rows,
+                       int max_iterations = 50);
+
+// Residuals (measured − model) at the rows.
+std::vector<double> residuals(const ExtendedModel& m, const fit::FitData& d,
+                              std::span<const std::size_t> rows);
+
+}  // namespace knoblab::discovery::detail

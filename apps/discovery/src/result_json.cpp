@@ -1,0 +1,57 @@
+// The discrepancy JSON (names fixed by issue 5; docs/discrepancy.md).
+#include <nlohmann/json.hpp>
+
+#include "knoblab/discovery/discrepancy.hpp"
+
+namespace knoblab::discovery {
+
+namespace {
+
+nlohmann::ordered_json params_json(const Params& p) {
+  nlohmann::ordered_json o = nlohmann::ordered_json::object();
+  for (const auto& [name, value] : p) o[name] = value;
+  return o;
+}
+
+}  // namespace
+
+std::string to_json(const DiscrepancyResult& r, int indent) {
+  nlohmann::ordered_json j;
+  j["base"] = {{"params", params_json(r.base.params)},
+               {"rmse_Nm", r.base.rmse_Nm},
+               {"heldout_rmse_Nm", r.base.heldout_rmse_Nm},
+               {"bic", r.base.bic}};
+  j["findings"] = nlohmann::ordered_json::array();
+  for (const Finding& f : r.findings) {
+    j["findings"].push_back({{"effect", std::string(effect_name(f.effect))},
+                             {"confidence", f.confidence},
+                             {"where", f.where},
+                             {"explanation", f.explanation},
+                             {"params", params_json(f.params)},
+                             {"rmse_before_Nm", f.rmse_before_Nm},
+                             {"rmse_after_Nm", f.rmse_after_Nm},
+                             {"heldout_rmse_before_Nm", f.heldout_rmse_before_Nm},
+                             {"heldout_rmse_after_Nm", f.heldout_rmse_after_Nm},
+                             {"bic_before", f.bic_before},
+                             {"bic_after", f.bic_after},
+                             {"heldout_t", f.t_stat}});
+  }
+  j["final"] = {{"params", params_json(r.final_model.params)},
+                {"rmse_Nm", r.final_model.rmse_Nm},
+                {"heldout_rmse_Nm", r.final_model.heldout_rmse_Nm},
+                {"bic", r.final_model.bic}};
+  j["candidates"] = nlohmann::ordered_json::array();
+  for (const CandidateScore& c : r.candidates) {
+    j["candidates"].push_back({{"round", c.round},
+                               {"effect", std::string(effect_name(c.effect))},
+                               {"heldout_gain", c.heldout_gain},
+                               {"heldout_t", c.t_stat},
+                               {"kept", c.kept}});
+  }
+  j["train_rows"] = r.train_rows;
+  j["heldout_rows"] = r.heldout_rows;
+  j["seconds"] = r.seconds;
+  return j.dump(indent);
+}
+
+}  // namespace knoblab::discovery
