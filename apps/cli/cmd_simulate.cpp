@@ -16,12 +16,13 @@ namespace knoblab::cli {
 
 const CommandSpec kSimulateSpec{
     "simulate",
-    "(--knob PRESET | --params FILE) [--seconds S] [--rate HZ] [--out FILE.csv] [--db FILE]",
+    "(--knob PRESET | --params FILE) [--effects SPECS] [--seconds S] [--rate HZ] [--out FILE.csv] [--db FILE]",
     "Capture a simulated knob: the swept sine of thesis Eq. 8 (Table 3 spatial test by\n"
     "default) tracked by the PID of Eq. 4 through the plant simulator, in the loop\n"
     "hapticd runs. Writes an interchange CSV and/or a capture in the store.\n"
     "Presets: 'knoblab simulate --list'.",
     {{"knob", true, "knob preset id (see --list)"},
+     {"effects", true, "effects beyond the thesis model, 'id:k=v,…;…' (sim/library_effects.hpp)"},
      {"params", true, "knob parameters JSON (the fit's output format)"},
      {"seconds", true, "capture length, s (default 5, as the thesis)"},
      {"rate", true, "loop rate, Hz (default 5000; 1..20000)"},
@@ -84,6 +85,15 @@ int run_simulate(const Args& args) {
     const std::string path = args.require("params");
     req.knob = read_knob_file(path);
     req.knob_name = path;
+  }
+  if (auto text = args.get("effects")) {
+    try {
+      for (const sim::EffectSpec& e : sim::parse_effect_specs(*text)) {
+        if (!sim::apply_to_knob(e, req.knob)) req.effects.push_back(e);
+      }
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--effects: ") + e.what());
+    }
   }
   req.seconds = args.number("seconds", req.seconds);
   req.rate_hz = args.number("rate", req.rate_hz);

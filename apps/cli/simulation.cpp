@@ -45,6 +45,7 @@ void validate(const SimulationRequest& r) {
 SimulationResult simulate(const SimulationRequest& r, store::Store* db) {
   validate(r);
   capture::SimDaq daq(plant_config(r), r.rate_hz);
+  for (const sim::EffectSpec& e : r.effects) daq.plant().add_effect(sim::make_knob_effect(e));
 
   capture::CaptureConfig cfg;
   cfg.rate_hz = r.rate_hz;
@@ -62,6 +63,11 @@ SimulationResult simulate(const SimulationRequest& r, store::Store* db) {
                   {"mode", r.mode},                    {"rate_hz", fmt(r.rate_hz)},
                   {"seed", std::to_string(r.seed)},    {"stimulus", stimulus_json(r.stimulus)},
                   {"orientation", orientation},        {"calibration", cfg.calibration.to_json()}};
+  if (!r.effects.empty()) {
+    std::string list;
+    for (const sim::EffectSpec& e : r.effects) list += (list.empty() ? "" : ";") + e.text();
+    cap.metadata.emplace_back("effects", list);
+  }
   cap.has_command = true;
   for (auto* v : {&cap.t, &cap.theta, &cap.omega, &cap.alpha, &cap.torque, &cap.command})
     v->reserve(static_cast<std::size_t>(cycles));

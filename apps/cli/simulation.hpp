@@ -9,6 +9,7 @@
 
 #include "knoblab/capture/capture_controller.hpp"
 #include "knoblab/interchange/capture.hpp"
+#include "knoblab/sim/library_effects.hpp"
 #include "knoblab/sim/plant.hpp"
 #include "knoblab/store/store.hpp"
 
@@ -25,6 +26,9 @@ struct SimulationRequest {
   sim::AmpMode amp = sim::AmpMode::Current;
   capture::PidGains pid{};
   model::SweptSine stimulus = model::SweptSine::spatial();
+  // Effects beyond the thesis model (torque specs; knob-term specs are
+  // folded into `knob` by the caller with sim::apply_to_knob).
+  std::vector<sim::EffectSpec> effects;
 };
 
 struct SimulationResult {

@@ -69,7 +69,7 @@ Binned bin(const fit::FitData& d, std::span<const std::size_t> rows, const std::
 }
 
 // The strongest sinusoid of y over position, frequencies (cycles/rev) at
-// least `f_min`, skipping ±2 resolutions around each of `avoid`.
+// least `f_min`, skipping the main lobe (±1 resolution) around each of `avoid`.
 std::optional<model::SinusoidFit> strongest_periodic(const Binned& b, double f_min,
                                                      const std::vector<double>& avoid) {
   if (b.theta.size() < 16 || !(b.range > 0)) return std::nullopt;
@@ -83,7 +83,7 @@ std::optional<model::SinusoidFit> strongest_periodic(const Binned& b, double f_m
   for (std::size_t k = 0; k < pg.frequency.size(); ++k) {
     const double f = pg.frequency[k];
     bool skip = false;
-    for (const double a : avoid) skip = skip || std::abs(f - a) < 2 * resolution;
+    for (const double a : avoid) skip = skip || std::abs(f - a) < resolution;  // the main lobe
     if (!skip && pg.power[k] > best) best = pg.power[k], f_best = f;
   }
   if (best <= 0) return std::nullopt;

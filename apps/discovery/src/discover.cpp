@@ -153,10 +153,17 @@ DiscrepancyResult discover(const fit::FitData& d, const DiscrepancyOptions& opt)
   std::vector<char> usable(d.size(), 1);
   Split s = split_rows(d, usable, opt);
   const fit::FitResult base_fit = fit::fit_knob(subset(d, s.train));
-  if (base_fit.stick) {
-    for (std::size_t i = 0; i < d.size(); ++i) usable[i] = std::abs(d.omega[i]) >= base_fit.stick->dv;
-    s = split_rows(d, usable, opt);
-  }
+  // Near-stuck samples: inside the fitted stick band, and in any case below
+  // 2 % of the brisk speed (an effect the base lacks can hide the band from
+  // its estimate; a knob that slow is held by static friction, which no
+  // sliding law describes).
+  std::vector<double> speed(d.size());
+  for (std::size_t i = 0; i < d.size(); ++i) speed[i] = std::abs(d.omega[i]);
+  std::nth_element(speed.begin(), speed.begin() + static_cast<std::ptrdiff_t>(0.95 * static_cast<double>(d.size() - 1)), speed.end());
+  double slow = 0.02 * speed[static_cast<std::size_t>(0.95 * static_cast<double>(d.size() - 1))];
+  if (base_fit.stick) slow = std::max(slow, base_fit.stick->dv);
+  for (std::size_t i = 0; i < d.size(); ++i) usable[i] = std::abs(d.omega[i]) >= slow;
+  s = split_rows(d, usable, opt);
   ExtendedModel m;
   m.base = base_fit.params;
   m.base_fitted = base_fit.fitted;

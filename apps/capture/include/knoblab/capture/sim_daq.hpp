@@ -21,6 +21,8 @@ class SimDaq final : public Daq {
   // camera: encoder scale, torque scale, C_cal and the gravity fit of Eq. 2.
   SensorCalibration calibration() const;
   const sim::Plant& plant() const { return plant_; }
+  // Setup time only (before the loop runs): add effects to the plant.
+  sim::Plant& plant() { return plant_; }
 
  private:
   sim::Plant plant_;

@@ -1,0 +1,154 @@
+#include "knoblab/sim/library_effects.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <set>
+#include <stdexcept>
+
+#include "knoblab/model/effects.hpp"
+
+namespace knoblab::sim {
+
+namespace {
+
+const std::map<std::string, std::set<std::string>>& known() {
+  static const std::map<std::string, std::set<std::string>> k = {
+      {"offset", {"tau0"}},
+      {"gravity", {"A", "phase"}},
+      {"stribeck", {"excess", "v_s"}},
+      {"nonlinear_damping", {"c", "p"}},
+      {"position_friction", {"depth", "P", "phase"}},
+      {"periodic_torque", {"A", "P", "S"}},
+      {"drift", {"rate", "t0"}},
+      {"spring", {"K", "K3", "theta0"}},
+      {"detent_shape", {"a2", "b2", "a3", "b3", "a4", "b4"}},
+  };
+  return k;
+}
+
+double get(const EffectSpec& s, const char* name, double fallback = 0.0) {
+  const auto it = s.params.find(name);
+  return it == s.params.end() ? fallback : it->second;
+}
+
+// A library term as a knob effect: the term by value, evaluated in place.
+template <typename F>
+class TermEffect final : public KnobEffect {
+ public:
+  explicit TermEffect(F f) : f_(std::move(f)) {}
+  double torque(const KnobMotion& knob, double t) const override { return f_(knob, t); }
+
+ private:
+  F f_;
+};
+
+template <typename F>
+std::unique_ptr<KnobEffect> effect(F f) {
+  return std::make_unique<TermEffect<F>>(std::move(f));
+}
+
+}  // namespace
+
+std::string EffectSpec::text() const {
+  std::string out = id;
+  char sep = ':';
+  for (const auto& [k, v] : params) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    out += sep + k + "=" + buf;
+    sep = ',';
+  }
+  return out;
+}
+
+std::vector<EffectSpec> parse_effect_specs(std::string_view text) {
+  std::vector<EffectSpec> out;
+  std::size_t at = 0;
+  while (at < text.size()) {
+    const std::size_t end = std::min(text.find(';', at), text.size());
+    const std::string_view one = text.substr(at, end - at);
+    at = end + 1;
+    if (one.empty()) continue;
+    EffectSpec s;
+    const std::size_t colon = one.find(':');
+    s.id = std::string(one.substr(0, colon));
+    const auto kind = known().find(s.id);
+    if (kind == known().end()) throw std::invalid_argument("unknown effect '" + s.id + "'");
+    std::string_view rest = colon == std::string_view::npos ? "" : one.substr(colon + 1);
+    while (!rest.empty()) {
+      const std::size_t comma = std::min(rest.find(','), rest.size());
+      const std::string_view kv = rest.substr(0, comma);
+      rest = comma < rest.size() ? rest.substr(comma + 1) : "";
+      const std::size_t eq = kv.find('=');
+      if (eq == std::string_view::npos)
+        throw std::invalid_argument("effect '" + s.id + "': expected name=value, got '" + std::string(kv) + "'");
+      const std::string name(kv.substr(0, eq)), value(kv.substr(eq + 1));
+      if (!kind->second.count(name))
+        throw std::invalid_argument("effect '" + s.id + "' has no parameter '" + name + "'");
+      char* stop = nullptr;
+      const double v = std::strtod(value.c_str(), &stop);
+      if (value.empty() || *stop != '\0' || !std::isfinite(v))
+        throw std::invalid_argument("effect '" + s.id + "': '" + name + "' is not a number: '" + value + "'");
+      s.params[name] = v;
+    }
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+bool apply_to_knob(const EffectSpec& s, KnobParams& knob) {
+  if (s.id == "spring") {
+    knob.spring.K = get(s, "K");
+    knob.spring.K3 = get(s, "K3");
+    knob.spring.theta0 = get(s, "theta0");
+    return true;
+  }
+  if (s.id == "detent_shape") {
+    for (std::size_t k = 2; k <= 4; ++k) {
+      knob.detents.a[k] = get(s, ("a" + std::to_string(k)).c_str());
+      knob.detents.b[k] = get(s, ("b" + std::to_string(k)).c_str());
+    }
+    knob.detents.harmonics = std::max<std::size_t>(knob.detents.harmonics, 4);
+    return true;
+  }
+  return false;
+}
+
+std::unique_ptr<KnobEffect> make_knob_effect(const EffectSpec& s) {
+  if (s.id == "offset") {
+    const model::Offset<double> o{get(s, "tau0")};
+    return effect([o](const KnobMotion&, double) { return o.torque(); });
+  }
+  if (s.id == "gravity") {
+    const model::OncePerRev<double> g{get(s, "A"), get(s, "phase")};
+    return effect([g](const KnobMotion& k, double) { return g.torque(k.theta); });
+  }
+  if (s.id == "stribeck") {
+    const model::Stribeck<double> f{get(s, "excess"), get(s, "v_s", 1.0)};
+    return effect([f](const KnobMotion& k, double) { return f.torque(k.omega); });
+  }
+  if (s.id == "nonlinear_damping") {
+    const model::PowerDamping<double> f{get(s, "c"), get(s, "p", 2.0)};
+    return effect([f](const KnobMotion& k, double) { return f.torque(k.omega); });
+  }
+  if (s.id == "position_friction") {
+    const model::PositionFriction<double> f{get(s, "depth"), get(s, "P", 1.0), get(s, "phase")};
+    return effect([f](const KnobMotion& k, double) { return f.torque(k.theta, k.omega); });
+  }
+  if (s.id == "periodic_torque") {
+    model::Detents<double> w;
+    w.A = get(s, "A");
+    w.P = get(s, "P", 1.0);
+    w.S = get(s, "S");
+    return effect([w](const KnobMotion& k, double) { return w.torque(k.theta); });
+  }
+  if (s.id == "drift") {
+    const model::FrictionDrift<double> f{get(s, "rate"), get(s, "t0")};
+    return effect([f](const KnobMotion& k, double t) { return f.torque(k.omega, t); });
+  }
+  throw std::invalid_argument("effect '" + s.id + "' is not a knob torque (fold it into the knob)");
+}
+
+}  // namespace knoblab::sim
