@@ -50,7 +50,7 @@ TEST(DiscrepancySim, ASecondPeriodicTorqueIsNamedWithItsPeriod) {
 }
 
 TEST(DiscrepancySim, StribeckFrictionIsNamed) {
-  const auto r = discover_with("stribeck:excess=0.002,v_s=0.2");
+  const auto r = discover_with("stribeck:excess=0.0012,v_s=0.5");
   ASSERT_FALSE(r.findings.empty()) << discovery::to_json(r);
   EXPECT_EQ(r.findings.front().effect, discovery::EffectId::Stribeck) << discovery::to_json(r);
   EXPECT_GT(param(r.findings.front(), "static_excess_Nm"), 0.0);

@@ -27,8 +27,8 @@
 namespace knoblab::discovery {
 
 struct DiscrepancyOptions {
-  std::size_t blocks = 16;          // contiguous time blocks, odd ones held out
-  std::size_t max_rows = 12000;     // training / held-out rows used, evenly strided
+  std::size_t blocks = 32;          // contiguous time blocks, odd ones held out
+  std::size_t max_rows = 6000;      // training / held-out rows used, evenly strided
   double min_heldout_gain = 0.02;   // held-out RMS must fall by ≥ 2 %
   double min_t = 3.0;               // … in most held-out blocks (t of the MSE drop)
   std::size_t max_findings = 4;
