@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <string>
@@ -68,6 +69,27 @@ TEST(Discover, NamesASecondPeriodicTorqueAndItsPeriod) {
   EXPECT_EQ(f.effect, EffectId::PeriodicTorque) << to_json(r);
   EXPECT_NEAR(param(f, "cycles_per_rev"), 11.3, 0.1);
   EXPECT_NEAR(param(f, "period_rad"), 2 * std::numbers::pi / 11.3, 0.01);
+}
+
+TEST(Discover, FindsTwoUnrelatedPeriodicTorquesOneAfterTheOther) {
+  // Cogging has several components: 11.3 and 17.9 cycles/rev, each weaker
+  // than the knob's detents (1.0 at 5/rev), so which one is "the detents" is
+  // not in question.
+  const model::Detents<double> a{0.6, 1.0 / 11.3, 0.5}, b{0.5, 1.0 / 17.9, -1.0};
+  const DiscrepancyResult r = discover(with_effect(6, [&](const fit::FitData& d, std::size_t i) {
+    return a.torque(d.theta[i]) + b.torque(d.theta[i]);
+  }));
+  ASSERT_GE(r.findings.size(), 2u) << to_json(r);
+  std::vector<double> found;
+  for (const Finding& f : r.findings) {
+    if (f.effect == EffectId::PeriodicTorque) found.push_back(param(f, "cycles_per_rev"));
+  }
+  ASSERT_EQ(found.size(), 2u) << to_json(r);
+  std::sort(found.begin(), found.end());
+  EXPECT_NEAR(found[0], 11.3, 0.1);
+  EXPECT_NEAR(found[1], 17.9, 0.1);
+  const auto j = nlohmann::json::parse(to_json(r));
+  EXPECT_TRUE(j["final"]["params"].contains("periodic_torque#2.cycles_per_rev"));
 }
 
 TEST(Discover, NamesNonSinusoidalDetents) {

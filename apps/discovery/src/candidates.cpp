@@ -165,6 +165,9 @@ std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& m,
       if (base_has_detents(m)) {
         for (std::size_t k = 1; k <= kShapeHarmonics + 1; ++k) avoid.push_back(static_cast<double>(k) / base_period(m));
       }
+      for (const ActiveEffect& e : m.effects) {  // periodic torques found already
+        if (e.id == EffectId::PeriodicTorque) avoid.push_back(1.0 / std::abs(e.params[1]));
+      }
       const auto peak = strongest_periodic(bin(d, train, r), 1.5, avoid);
       if (!peak) return std::nullopt;
       c = with(m, {id, {peak->amplitude, 1.0 / peak->frequency, peak->phase}, 0.0});

@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <chrono>
+#include <map>
 #include <cmath>
 #include <numbers>
 #include <numeric>
@@ -120,9 +121,13 @@ Params summary_params(const ExtendedModel& m) {
   for (std::size_t k = 0; k < m.base.size(); ++k) {
     out.emplace_back(std::string(model::kThesisParamNames[k]), m.base[k]);
   }
+  std::map<EffectId, int> seen;
   for (const ActiveEffect& e : m.effects) {
+    // A second periodic torque is "periodic_torque#2.…".
+    const int k = ++seen[e.id];
+    const std::string prefix = std::string(effect_name(e.id)) + (k > 1 ? "#" + std::to_string(k) : "");
     for (const auto& [name, value] : detail::report_params(e, m)) {
-      out.emplace_back(std::string(effect_name(e.id)) + "." + name, value);
+      out.emplace_back(prefix + "." + name, value);
     }
   }
   return out;
@@ -183,7 +188,8 @@ DiscrepancyResult discover(const fit::FitData& d, const DiscrepancyOptions& opt)
     };
     std::vector<Tried> tried;
     for (const EffectId id : pool) {
-      if (m.has(id)) continue;
+      // Periodic torques may repeat (cogging has several); the rest are one each.
+      if (m.has(id) && id != EffectId::PeriodicTorque) continue;
       std::optional<ExtendedModel> fitted = detail::fit_candidate(id, m, d, s.train, r_train);
       if (!fitted) continue;
       Tried t{std::move(*fitted), {}, 0.0, 0.0};
