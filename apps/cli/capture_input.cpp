@@ -28,6 +28,17 @@ CaptureInput read_capture_input(const Args& args) {
   return in;
 }
 
+fit::PrepOptions prep_options(const Args& args) {
+  fit::PrepOptions prep;
+  if (auto a = args.get("alpha")) {
+    if (*a == "encoder") prep.alpha = fit::AlphaSource::Encoder;
+    else if (*a == "accel") prep.alpha = fit::AlphaSource::Accelerometer;
+    else throw UsageError("--alpha must be encoder or accel");
+  }
+  prep.filter = !args.has("no-filter");
+  return prep;
+}
+
 void write_text(const std::string& path, const std::string& text) {
   if (path == "-") {
     std::fwrite(text.data(), 1, text.size(), stdout);

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "args.hpp"
+#include "knoblab/fit/fit_data.hpp"
 #include "knoblab/interchange/capture.hpp"
 #include "knoblab/store/store.hpp"
 
@@ -21,6 +22,9 @@ struct CaptureInput {
 
 // Throws UsageError when neither or both sources are given.
 CaptureInput read_capture_input(const Args& args);
+
+// The data preparation --alpha and --no-filter ask for (UsageError otherwise).
+fit::PrepOptions prep_options(const Args& args);
 
 // Writes text and a newline to `path`, or to stdout when path is "-".
 void write_text(const std::string& path, const std::string& text);

@@ -44,13 +44,7 @@ std::vector<discovery::EffectId> parse_effects(const std::string& list) {
 }  // namespace
 
 int run_discrepancy(const Args& args) {
-  fit::PrepOptions prep;
-  if (auto a = args.get("alpha")) {
-    if (*a == "encoder") prep.alpha = fit::AlphaSource::Encoder;
-    else if (*a == "accel") prep.alpha = fit::AlphaSource::Accelerometer;
-    else throw UsageError("--alpha must be encoder or accel");
-  }
-  prep.filter = !args.has("no-filter");
+  const fit::PrepOptions prep = prep_options(args);
   discovery::DiscrepancyOptions opt;
   if (auto e = args.get("effects")) opt.effects = parse_effects(*e);
 

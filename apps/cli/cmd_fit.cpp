@@ -32,17 +32,12 @@ const CommandSpec kFitSpec{
     0, 0};
 
 int run_fit(const Args& args) {
-  fit::PrepOptions prep;
+  const fit::PrepOptions prep = prep_options(args);
   fit::FitOptions opt;
   if (auto m = args.get("model")) {
     const auto kind = fit::parse_model(*m);
     if (!kind) throw UsageError("--model must be thesis6 or render4, got '" + *m + "'");
     opt.model = *kind;
-  }
-  if (auto a = args.get("alpha")) {
-    if (*a == "encoder") prep.alpha = fit::AlphaSource::Encoder;
-    else if (*a == "accel") prep.alpha = fit::AlphaSource::Accelerometer;
-    else throw UsageError("--alpha must be encoder or accel");
   }
   if (auto d = args.get("detents")) {
     if (*d == "auto") opt.detents = fit::FitOptions::Detents::Auto;
@@ -50,7 +45,6 @@ int run_fit(const Args& args) {
     else if (*d == "no") opt.detents = fit::FitOptions::Detents::None;
     else throw UsageError("--detents must be auto, yes or no");
   }
-  prep.filter = !args.has("no-filter");
   opt.stick_band = !args.has("no-stick");
 
   CaptureInput in = read_capture_input(args);

@@ -97,8 +97,6 @@ std::vector<double> column(std::span<const std::size_t> rows,
   return c;
 }
 
-double sgn(double x) { return x > 0 ? 1.0 : x < 0 ? -1.0 : 0.0; }
-
 ExtendedModel with(const ExtendedModel& m, ActiveEffect e) {
   ExtendedModel out = m;
   out.effects.push_back(std::move(e));
@@ -188,7 +186,7 @@ std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& m,
         double sse = 0.0;
         const auto b = regress({column(train, [&](std::size_t i) {
                                  const double x = d.omega[i] / vs;
-                                 return sgn(d.omega[i]) * std::exp(-x * x);
+                                 return model::sgn(d.omega[i]) * std::exp(-x * x);
                                })},
                                r, &sse);
         if (start.empty() || sse < best_sse) best_sse = sse, start = {b[0], vs};
@@ -202,7 +200,7 @@ std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& m,
       for (const double p : {0.5, 2.0}) {
         double sse = 0.0;
         const auto b = regress({column(train, [&](std::size_t i) {
-                                 return sgn(d.omega[i]) * std::pow(std::abs(d.omega[i]), p);
+                                 return model::sgn(d.omega[i]) * std::pow(std::abs(d.omega[i]), p);
                                })},
                                r, &sse);
         if (start.empty() || sse < best_sse) best_sse = sse, start = {b[0], p};
@@ -212,7 +210,7 @@ std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& m,
     }
     case EffectId::PositionFriction: {
       std::vector<double> rs(r.size());
-      for (std::size_t j = 0; j < r.size(); ++j) rs[j] = r[j] * sgn(d.omega[train[j]]);
+      for (std::size_t j = 0; j < r.size(); ++j) rs[j] = r[j] * model::sgn(d.omega[train[j]]);
       const auto peak = strongest_periodic(bin(d, train, rs), 0.5, {});
       if (!peak) return std::nullopt;
       c = with(m, {id, {peak->amplitude, 1.0 / peak->frequency, peak->phase}, 0.0});
@@ -221,7 +219,7 @@ std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& m,
     case EffectId::Drift: {
       double t_mid = 0.0;
       for (const std::size_t i : train) t_mid += d.t[i] / static_cast<double>(train.size());
-      const auto b = regress({column(train, [&](std::size_t i) { return sgn(d.omega[i]) * (d.t[i] - t_mid); })}, r);
+      const auto b = regress({column(train, [&](std::size_t i) { return model::sgn(d.omega[i]) * (d.t[i] - t_mid); })}, r);
       c = with(m, {id, {b[0]}, t_mid});
       break;
     }

@@ -52,8 +52,6 @@ void ExtendedModel::unflatten(std::span<const double> p) {
     for (double& v : e.params) v = p[k++];
 }
 
-std::size_t ExtendedModel::size() const { return flat().size(); }
-
 Layout layout_of(const ExtendedModel& m) {
   Layout L;
   int at = static_cast<int>(m.base.size());

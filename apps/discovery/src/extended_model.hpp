@@ -39,7 +39,6 @@ struct ExtendedModel {
   const ActiveEffect* find(EffectId id) const;
   std::vector<double> flat() const;   // base then every effect's params
   void unflatten(std::span<const double> p);
-  std::size_t size() const;
 };
 
 // What the torque function reads for one row: the motion (delayed when a

@@ -170,8 +170,7 @@ CellModel cell_model(ModelKind kind, const PositionCells& cells, const double* p
 }
 
 void evaluate_cells(ModelKind kind, const PositionCells& cells, std::span<const std::uint32_t> rows,
-                    const double* p, std::span<double> residuals, std::span<double> jacobian,
-                    std::span<double> velocity_part) {
+                    const double* p, std::span<double> residuals, std::span<double> jacobian) {
   const CellModel m = cell_model(kind, cells, p, !jacobian.empty());
   for (std::size_t j = 0; j < rows.size(); ++j) {
     const std::uint32_t i = rows[j];
@@ -185,7 +184,6 @@ void evaluate_cells(ModelKind kind, const PositionCells& cells, std::span<const 
         for (std::size_t k = 0; k < m.n; ++k) J[k] += z[a] * dc[a * m.n + k];
       }
     }
-    if (!velocity_part.empty()) velocity_part[j] = m.velocity_part(i);
   }
 }
 

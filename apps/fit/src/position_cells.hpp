@@ -86,7 +86,6 @@ class PositionCells {
   void factor();
 
   const std::vector<Cell>& cells() const { return cells_; }
-  const FitData& data() const { return *d_; }
   double half_width() const { return half_; }
   // The cell and position within it (u in [−1, 1]) of row i; cell_of is
   // kNone for a row that was never added.
@@ -167,11 +166,9 @@ CellModel cell_model(ModelKind kind, const PositionCells& cells, const double* p
                      bool derivatives);
 
 // Residuals (model − measured) and, when `jacobian` is not empty, Jacobian
-// rows (rows.size() × n) of the given rows at p, through the cells; also the
-// velocity part B_g·ω + c_g of each row when `velocity_part` is not empty.
+// rows (rows.size() × n) of the given rows at p, through the cells.
 void evaluate_cells(ModelKind kind, const PositionCells& cells, std::span<const std::uint32_t> rows,
-                    const double* p, std::span<double> residuals, std::span<double> jacobian,
-                    std::span<double> velocity_part = {});
+                    const double* p, std::span<double> residuals, std::span<double> jacobian);
 
 // The covariance (covariance.cpp) through the cells: JᵀJ from the cells'
 // Gram matrices, the scores and the curve's band in one pass each over rows.
