@@ -24,6 +24,7 @@ const std::map<std::string, std::set<std::string>>& known() {
       {"drift", {"rate", "t0"}},
       {"spring", {"K", "K3", "theta0"}},
       {"detent_shape", {"a2", "b2", "a3", "b3", "a4", "b4"}},
+      {"backlash", {"width"}},
   };
   return k;
 }
@@ -103,6 +104,10 @@ bool apply_to_knob(const EffectSpec& s, KnobParams& knob) {
     knob.spring.K = get(s, "K");
     knob.spring.K3 = get(s, "K3");
     knob.spring.theta0 = get(s, "theta0");
+    return true;
+  }
+  if (s.id == "backlash") {
+    knob.backlash = get(s, "width");
     return true;
   }
   if (s.id == "detent_shape") {

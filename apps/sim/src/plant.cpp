@@ -72,6 +72,9 @@ void Plant::reset() {
   torque_rng_.seed(splitmix64(cfg_.seed ^ kTorqueStream));
   accel_rng_.seed(splitmix64(cfg_.seed ^ kAccelStream));
   for (auto& e : effects_) e->reset();
+  play_.width = cfg_.knob.backlash;
+  play_.reset(cfg_.initial_angle);
+  mech_velocity_ = 0.0;
   accel_.reset(cfg_.initial_angle);
   sample();
 }
@@ -146,33 +149,82 @@ double Plant::effects_torque(const KnobMotion& k) const {
   return tau;
 }
 
+// Which face of the play the knob is against: +1 the knob's leading side
+// (it pushes the mechanism forward or is held back by it), −1 the trailing
+// side, 0 inside the play. Without play: always +1.
+int Plant::play_face() const {
+  if (cfg_.knob.backlash <= 0.0) return 1;
+  const double e = state_.knob_angle - play_.knob, half = 0.5 * cfg_.knob.backlash;
+  const double tol = 1e-9 * half;
+  return e >= half - tol ? 1 : e <= -half + tol ? -1 : 0;
+}
+
+// The detent mechanism on its own (massless, the knob not touching it): it
+// stays put while its friction holds its detent and effect torques (static
+// limits when it stood last substep), else it slides at the speed where
+// kinetic friction balances them — a detent's downslope pulls it ahead of
+// the knob. Without viscous friction it jumps (a large speed).
+double Plant::mechanism_free_velocity(double tau_pos) const {
+  const KnobParams& kp = cfg_.knob;
+  const double pull = -tau_pos;  // drives the mechanism forward
+  const bool fwd = pull > 0.0;
+  const bool moving = !kp.stick.sticking(mech_velocity_) && mech_velocity_ != 0.0;
+  const double hold = moving ? (fwd ? kp.friction.C_pos : kp.friction.C_neg)
+                             : (fwd ? kp.stick.D_pos : kp.stick.D_neg);
+  const double excess = std::abs(pull) - hold;
+  if (!(excess > 0.0)) return 0.0;
+  const double b = fwd ? kp.friction.B_pos : kp.friction.B_neg;
+  const double v = b > 0.0 ? excess / b : 1e3;
+  return fwd ? v : -v;
+}
+
+// The knob side, after the coupling (gripper and knob cap, inertia M), drives
+// the detent mechanism through the play (KnobParams::backlash): the pin of
+// a slot. The massless mechanism's friction, detents and effects load the
+// knob only while a face is pressed — the knob moving into it faster than
+// the mechanism would move on its own — and never pull the faces apart.
+// Inside the play the knob turns against its inertia alone. Driven by the
+// knob alone this is model::Backlash, the operator discovery fits.
 void Plant::step_knob(double motor_force, double h) {
   auto& s = state_;
   const KnobParams& kp = cfg_.knob;
-  const KnobMotion before{s.knob_angle, s.knob_velocity, s.knob_accel};
   const double w = s.knob_velocity;
-  const double tau_pos = position_torque(kp, s.knob_angle, w) + effects_torque(before);
+  const bool play = kp.backlash > 0.0;
+  const int face = play_face();
+  const double phi = play ? play_.knob : s.knob_angle;  // the mechanism
+  const double tau_pos = position_torque(kp, phi, w) + effects_torque({phi, w, s.knob_accel});
+  const double v_free = play ? mechanism_free_velocity(tau_pos) : 0.0;
+  // A pressed face pushes (+1: back on the knob, −1: the knob forward), never pulls.
+  const auto pushes = [&](double mech_torque) { return !play || face * mech_torque >= 0.0; };
 
-  double friction = 0.0;
-  if (kp.stick.sticking(w)) {
-    // Karnopp (Eq. 7): try the knob held still; if the friction needed stays
-    // within the static limits, it is stuck and its velocity is 0.
-    const MotorStep m = motor_against_held_knob(motor_force, h);
-    const double tau_other = m.torque - tau_pos;
-    friction = kp.stick.torque(w, tau_other, kp.friction);
-    if (friction == tau_other) {
-      s.motor_accel = (m.omega - s.motor_velocity) / h;
-      s.motor_velocity = m.omega;
-      s.motor_angle += h * m.omega;
-      s.knob_accel = -w / h;
-      s.knob_velocity = 0.0;
-      s.coupling_torque = m.torque;
-      s.stuck = true;
-      for (auto& e : effects_) e->advance({s.knob_angle, 0.0, s.knob_accel}, s.t, h);
-      return;
+  double mech = 0.0;  // the mechanism's torque on the knob (needed to move it)
+  bool engaged = !play || (face > 0 && w >= v_free) || (face < 0 && w <= v_free);
+  if (engaged) {
+    double friction = 0.0;
+    if (kp.stick.sticking(w)) {
+      // Karnopp (Eq. 7): try the knob held still; if the friction needed stays
+      // within the static limits (and the face is pressed), it is stuck.
+      const MotorStep m = motor_against_held_knob(motor_force, h);
+      const double tau_other = m.torque - tau_pos;
+      friction = kp.stick.torque(w, tau_other, kp.friction);
+      if (friction == tau_other && pushes(m.torque)) {
+        s.motor_accel = (m.omega - s.motor_velocity) / h;
+        s.motor_velocity = m.omega;
+        s.motor_angle += h * m.omega;
+        s.knob_accel = -w / h;
+        s.knob_velocity = 0.0;
+        s.coupling_torque = m.torque;
+        s.stuck = true;
+        mech_velocity_ = 0.0;
+        for (auto& e : effects_) e->advance({phi, 0.0, s.knob_accel}, s.t, h);
+        return;
+      }
+    } else {
+      friction = kp.friction.torque(w);
     }
-  } else {
-    friction = kp.friction.torque(w);
+    mech = tau_pos + friction;
+    engaged = pushes(mech);
+    if (!engaged) mech = 0.0;
   }
   s.stuck = false;
 
@@ -183,7 +235,7 @@ void Plant::step_knob(double motor_force, double h) {
   const double k = cfg_.coupling.stiffness;
   const double g = k * h + cfg_.coupling.damping;
   const double e = s.motor_angle - s.knob_angle;
-  const double knob_force = -(tau_pos + friction);
+  const double knob_force = -mech;
   const double inv = 1.0 / jm + 1.0 / jk;
   const double d = (s.motor_velocity - w + h * (motor_force / jm - knob_force / jk) - h * inv * k * e) /
                    (1.0 + h * g * inv);
@@ -192,7 +244,7 @@ void Plant::step_knob(double motor_force, double h) {
   double wk = w + h * (knob_force + tau_c) / jk;
   // Dry friction can stop the knob but not reverse it within one substep:
   // stop at zero so the next substep runs the stick test (or restarts from 0).
-  if (dry_friction_ && w != 0.0 && wk * w < 0.0) wk = 0.0;
+  if (engaged && dry_friction_ && w != 0.0 && wk * w < 0.0) wk = 0.0;
 
   s.motor_accel = (wm - s.motor_velocity) / h;
   s.motor_velocity = wm;
@@ -201,7 +253,17 @@ void Plant::step_knob(double motor_force, double h) {
   s.knob_velocity = wk;
   s.knob_angle += h * wk;
   s.coupling_torque = tau_c;
-  for (auto& eff : effects_) eff->advance({s.knob_angle, s.knob_velocity, s.knob_accel}, s.t, h);
+  // The mechanism: with the knob while engaged, else on its own; the faces
+  // of the play bound it either way.
+  if (play) {
+    if (!engaged) play_.knob += h * v_free;
+    play_.update(s.knob_angle);
+    mech_velocity_ = (play_.knob - phi) / h;
+  } else {
+    mech_velocity_ = wk;
+  }
+  const double a_mech = play ? 0.0 : s.knob_accel;  // massless: no inertia of its own to report
+  for (auto& eff : effects_) eff->advance({play ? play_.knob : s.knob_angle, mech_velocity_, a_mech}, s.t, h);
 }
 
 void Plant::sample() {

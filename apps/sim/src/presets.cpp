@@ -74,9 +74,17 @@ KnobParams non_sine() {
   Table7Column t = *table7("non-sine-detents", 1);
   t.D_neg = -90, t.D_pos = 90, t.A = 61, t.S = -0.16 + kPi;
   KnobParams k = thesis_knob(t, 12);
+  // Table 7's M for this knob is −0.0048 (set 1) and 0.0085 (set 2)
+  // mN·m/(rad/s²): noise around a value the fit could not resolve, and
+  // lighter than the gripper alone. Use the same car's volume knob
+  // (subtle-detents, 0.034): inside the play the capture loop turns this
+  // inertia alone, and at 0.0048 the thesis PID (Kd through the 10th-order
+  // velocity filter) hunts there.
+  k.inertia.M = 0.034e-3;
   k.detents.harmonics = 3;
   k.detents.a[2] = 0.10 * k.detents.A;  // skew: steeper on one side
   k.detents.a[3] = 0.20 * k.detents.A;  // flat tops: wide detents
+  k.backlash = 2.8e-3;  // play the thesis' raters felt (§2.2.2.4): 0.16°
   return k;
 }
 

@@ -26,6 +26,10 @@ struct KnobParams {
   model::Detents<double> detents{};        // A = 0: none
   model::Spring<double> spring{};          // K = K3 = 0: none
   model::Walls<double> walls{};            // K = B = 0: none
+  // Play between the gripper and the detent mechanism (rad, total): after a
+  // reversal the drive turns this far before it pushes the knob again, and
+  // the sensor reads nothing meanwhile. Applied in Plant::step_knob.
+  double backlash = 0.0;
 };
 
 // Detents + spring + walls: the knob's non-frictional, non-inertial torque.

@@ -15,6 +15,7 @@
 //   drift             rate, t0                       sgn(ω)·rate·(t − t0)
 //   spring            K, K3, theta0                  (KnobParams::spring)
 //   detent_shape      a2, b2, a3, b3, a4, b4         (KnobParams::detents harmonics)
+//   backlash          width                          (KnobParams::backlash, total play)
 // Missing parameters default to 0 (P to 1, v_s to 1, p to 2).
 #pragma once
 
@@ -40,7 +41,7 @@ struct EffectSpec {
 std::vector<EffectSpec> parse_effect_specs(std::string_view text);
 
 // Folds a spec into the knob when it is one of its terms (spring,
-// detent_shape) and returns true; false for the others.
+// detent_shape, backlash) and returns true; false for the others.
 bool apply_to_knob(const EffectSpec& spec, KnobParams& knob);
 
 // The KnobEffect of a torque spec (not spring / detent_shape). Setup time only.

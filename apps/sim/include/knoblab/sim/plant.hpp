@@ -17,6 +17,7 @@
 #include <memory>
 #include <vector>
 
+#include "knoblab/model/effects.hpp"
 #include "knoblab/sim/accelerometer.hpp"
 #include "knoblab/sim/amplifier.hpp"
 #include "knoblab/sim/coupling.hpp"
@@ -97,6 +98,8 @@ class Plant {
   void step_free(double motor_force, double h);
   void step_held(double motor_force, double h);
   void step_knob(double motor_force, double h);
+  int play_face() const;
+  double mechanism_free_velocity(double tau_pos) const;
   double effects_torque(const KnobMotion& k) const;
   void sample();
 
@@ -108,6 +111,8 @@ class Plant {
   double knob_inertia_ = 0.0;                // M + gripper
   bool dry_friction_ = false;
   std::vector<std::unique_ptr<KnobEffect>> effects_;
+  model::Backlash play_{};     // the detent mechanism behind the knob's play
+  double mech_velocity_ = 0.0;  // its speed over the last substep
   PlantState state_{};
   SensorReadings readings_{};
 };

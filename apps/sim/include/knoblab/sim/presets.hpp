@@ -11,13 +11,14 @@
 //  * P: Table 7's P_pos for subtle (0.076) and moderate (0.034) are swapped
 //    against Table 5 (30 and 12 clicks/rev) and Table 8; we use the "gold
 //    standard" counts: P = 1/30 (subtle), 1/12 (moderate, non-sine).
-//  * non-sine-detents: M = −0.0048 is non-physical → |M|. A = −202 mN·m is
+//  * non-sine-detents: M = −0.0048 is non-physical → 0.034, the same car's
+//    volume knob's (lighter, the capture loop hunts inside the play). A = −202 mN·m is
 //    beyond the sensor (±180) and the actuator (181 mN·m): capped to 61 mN·m
 //    (Table 7 set 2's |A|), the sign moved into the phase (S + π). D = 200
 //    mN·m could never be broken away by the 181 mN·m motor: capped to
 //    90 mN·m, so D + the peak detent torque stays under both limits. The
 //    knob's non-sinusoidal shape comes from Detents harmonics (2nd: skew,
-//    3rd: flat, wide detents); its backlash arrives with the effect library.
+//    3rd: flat, wide detents) and 2.8 mrad of backlash (KnobParams::backlash).
 //
 // The 7 stimuli of Study 2 (Table 19) and Study 3 (Table 20), ids
 // study2-… and study3-…: τ = a1·sin(a2·θ) + b·θ̇ + m·θ̈. The tables say
