@@ -9,13 +9,17 @@
 
 namespace knoblab::cli {
 
-CaptureInput read_capture_input(const Args& args) {
+namespace {
+
+// From the CSV named by `file_key`, or the capture id under `id_key` in --db.
+std::optional<CaptureInput> read_from(const Args& args, const std::string& file_key,
+                                      const std::string& id_key) {
   CaptureInput in;
-  if (auto input = args.get("input")) {
-    if (args.has("capture")) throw UsageError("give --input or --capture, not both");
+  if (auto input = args.get(file_key)) {
+    if (args.has(id_key)) throw UsageError("give --" + file_key + " or --" + id_key + ", not both");
     in.capture = interchange::read_csv(*input);
     in.title = std::filesystem::path(*input).filename().string();
-  } else if (auto id = args.get("capture")) {
+  } else if (auto id = args.get(id_key)) {
     in.db.emplace(store::Store::open(args.require("db")));
     in.capture_id = std::stoll(*id);
     const auto info = in.db->capture_info(*in.capture_id);
@@ -23,9 +27,21 @@ CaptureInput read_capture_input(const Args& args) {
     in.capture = in.db->load_samples(*in.capture_id);
     in.title = "capture " + *id + (info->knob.empty() ? "" : " (" + info->knob + ")");
   } else {
-    throw UsageError("give --input FILE.csv or --capture ID --db FILE");
+    return std::nullopt;
   }
   return in;
+}
+
+}  // namespace
+
+CaptureInput read_capture_input(const Args& args) {
+  std::optional<CaptureInput> in = read_from(args, "input", "capture");
+  if (!in) throw UsageError("give --input FILE.csv or --capture ID --db FILE");
+  return std::move(*in);
+}
+
+std::optional<CaptureInput> read_heldout_input(const Args& args) {
+  return read_from(args, "heldout", "heldout-capture");
 }
 
 fit::PrepOptions prep_options(const Args& args) {

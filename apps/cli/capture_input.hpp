@@ -23,6 +23,10 @@ struct CaptureInput {
 // Throws UsageError when neither or both sources are given.
 CaptureInput read_capture_input(const Args& args);
 
+// A second recording of the same knob from --heldout FILE.csv or
+// --heldout-capture ID (--db); none when neither is given.
+std::optional<CaptureInput> read_heldout_input(const Args& args);
+
 // The data preparation --alpha and --no-filter ask for (UsageError otherwise).
 fit::PrepOptions prep_options(const Args& args);
 

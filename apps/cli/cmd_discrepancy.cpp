@@ -2,24 +2,31 @@
 // which physics from the effect library is missing, fitted and checked on
 // held-out time blocks (docs/discrepancy.md).
 #include <cstdio>
+#include <string>
 
 #include "capture_input.hpp"
 #include "commands.hpp"
 #include "knoblab/discovery/discrepancy.hpp"
+#include "knoblab/discovery/report.hpp"
 #include "knoblab/fit/fit_data.hpp"
 
 namespace knoblab::cli {
 
 const CommandSpec kDiscrepancySpec{
     "discrepancy",
-    "--input FILE.csv | --capture ID --db FILE [--json OUT] [--effects a,b,…]",
+    "--input FILE.csv | --capture ID --db FILE [--heldout FILE.csv | --heldout-capture ID]\n"
+    "  [--json OUT] [--report DIR] [--effects a,b,…] [--max-findings N]",
     "Find what the thesis model leaves out of a capture: locate the structured residual,\n"
     "fit candidate effects (stribeck, backlash, detent_shape, periodic_torque, …) with the\n"
     "model, keep those that lower the error on held-out time blocks, and say so.",
     {{"input", true, "interchange CSV"},
      {"capture", true, "capture id in the store"},
      {"db", true, "sqlite store"},
+     {"heldout", true, "another recording of the knob (CSV), held out whole instead of time blocks"},
+     {"heldout-capture", true, "… or its capture id in the store"},
+     {"max-findings", true, "stop after N findings (default 4)"},
      {"json", true, "write the result as JSON (docs/discrepancy.md); '-' for stdout"},
+     {"report", true, "directory for the report: residual plots before/after, whiteness, summary"},
      {"effects", true, "comma-separated candidate effect ids (default: all implemented)"},
      {"alpha", true, "accel (default: the α column, when the CSV has one) or encoder (θ'')"},
      {"no-filter", false, "skip the Table 6 low-pass filters (data already clean)"}},
@@ -41,32 +48,57 @@ std::vector<discovery::EffectId> parse_effects(const std::string& list) {
   return out;
 }
 
+// "RMS 0.73 mN·m, held-out RMS 0.74 mN·m, fit 91.2 %, whiteness p 0.003"
+std::string figures(const discovery::ModelSummary& m) {
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "RMS %.4g mN·m, held-out RMS %.4g mN·m, fit %.1f %%, whiteness p ",
+                m.rmse_Nm * 1e3, m.heldout_rmse_Nm * 1e3, m.fit_percent);
+  char p[32];
+  std::snprintf(p, sizeof p, "%.2g", m.whiteness_p);
+  return buf + std::string(m.whiteness_p < 1e-12 ? "< 1e-12" : p);
+}
+
 }  // namespace
 
 int run_discrepancy(const Args& args) {
   const fit::PrepOptions prep = prep_options(args);
   discovery::DiscrepancyOptions opt;
   if (auto e = args.get("effects")) opt.effects = parse_effects(*e);
+  const long long max_findings = args.integer("max-findings", 4);
+  if (max_findings < 0 || max_findings > 16) throw UsageError("--max-findings must be 0 … 16");
+  opt.max_findings = static_cast<std::size_t>(max_findings);
+  if (args.get("report") == std::optional<std::string>("")) throw UsageError("--report needs a directory");
 
   const CaptureInput in = read_capture_input(args);
   const fit::FitData data = fit::prepare(in.capture, prep);
-  const discovery::DiscrepancyResult r = discovery::discover(data, opt);
+  const std::optional<CaptureInput> held = read_heldout_input(args);
+  const discovery::DiscrepancyResult r =
+      held ? discovery::discover(data, fit::prepare(held->capture, prep), opt)
+           : discovery::discover(data, opt);
 
   const bool json_to_stdout = args.get("json") == std::optional<std::string>("-");
   if (!json_to_stdout) {
-    std::printf("%s: %zu samples, %zu training and %zu held-out rows, %.2f s\n", in.title.c_str(),
-                data.size(), r.train_rows, r.heldout_rows, r.seconds);
-    std::printf("base model: RMS %.4g mN·m, held-out RMS %.4g mN·m\n", r.base.rmse_Nm * 1e3,
-                r.base.heldout_rmse_Nm * 1e3);
+    std::printf("%s: %zu samples, %zu training and %zu held-out rows%s, %.2f s\n", in.title.c_str(),
+                data.size(), r.train_rows, r.heldout_rows,
+                held ? (" (from " + held->title + ")").c_str() : "", r.seconds);
+    if (data.resampled) {
+      std::printf("irregular time stamps: resampled onto their median interval (%.4g Hz)\n", data.rate_hz);
+    }
+    std::printf("base model: %s\n", figures(r.base).c_str());
     if (r.findings.empty()) std::printf("no finding: nothing from the effect library improves the held-out error\n");
     for (const discovery::Finding& f : r.findings) {
       std::printf("- %s (confidence %.2f, %s): %s\n", std::string(discovery::effect_name(f.effect)).c_str(),
                   f.confidence, f.where.c_str(), f.explanation.c_str());
     }
-    std::printf("final model: RMS %.4g mN·m, held-out RMS %.4g mN·m\n", r.final_model.rmse_Nm * 1e3,
-                r.final_model.heldout_rmse_Nm * 1e3);
+    std::printf("final model: %s\n", figures(r.final_model).c_str());
   }
   if (auto out = args.get("json")) write_text(*out, discovery::to_json(r));
+  if (auto dir = args.get("report")) {
+    discovery::ReportOptions ro;
+    ro.title = in.title;
+    const auto files = discovery::write_discrepancy_report(*dir, data, r, ro);
+    if (!json_to_stdout) std::printf("report: %zu files in %s\n", files.size(), dir->c_str());
+  }
   return 0;
 }
 

@@ -17,13 +17,14 @@ struct Command {
 const std::vector<Command>& commands();
 
 extern const CommandSpec kSimulateSpec, kImportSpec, kExportSpec, kInspectSpec, kDemoSpec,
-    kListSpec, kFitSpec, kFitsSpec, kFitExportSpec, kDiscrepancySpec;
+    kListSpec, kConvertSpec, kFitSpec, kFitsSpec, kFitExportSpec, kDiscrepancySpec;
 int run_simulate(const Args&);
 int run_import(const Args&);
 int run_export(const Args&);
 int run_inspect(const Args&);
 int run_demo(const Args&);
 int run_list(const Args&);
+int run_convert(const Args&);
 int run_fit(const Args&);
 int run_fits(const Args&);
 int run_fit_export(const Args&);

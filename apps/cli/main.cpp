@@ -1,4 +1,4 @@
-// knoblab: capture, import/export and inspect knob recordings; the demo.
+// knoblab: capture, import/export, convert and inspect knob recordings; the demo.
 #include <cstdio>
 #include <exception>
 #include <iostream>
@@ -12,8 +12,8 @@ namespace knoblab::cli {
 const std::vector<Command>& commands() {
   static const std::vector<Command> all = {
       {kSimulateSpec, run_simulate}, {kImportSpec, run_import}, {kExportSpec, run_export},
-      {kListSpec, run_list},         {kInspectSpec, run_inspect}, {kFitSpec, run_fit},
-      {kFitsSpec, run_fits},         {kFitExportSpec, run_fit_export},
+      {kListSpec, run_list},         {kConvertSpec, run_convert}, {kInspectSpec, run_inspect},
+      {kFitSpec, run_fit},           {kFitsSpec, run_fits},       {kFitExportSpec, run_fit_export},
       {kDiscrepancySpec, run_discrepancy}, {kDemoSpec, run_demo},
   };
   return all;

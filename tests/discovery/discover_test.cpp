@@ -11,23 +11,14 @@
 #include <functional>
 #include <string>
 
+#include "effect_data.hpp"
 #include "knoblab/discovery/discrepancy.hpp"
-#include "knoblab/fit/validation_data.hpp"
 #include "knoblab/model/effects.hpp"
 
 namespace knoblab::discovery {
 namespace {
 
-// Validation data (uniform noise, SD 1.15 N·m) with extra torque added.
-fit::FitData with_effect(std::uint64_t seed, const std::function<double(const fit::FitData&, std::size_t)>& extra) {
-  fit::ValidationSpec spec;
-  spec.seed = seed;
-  spec.c = 4.0;  // sweep amplitude, rad
-  fit::FitData d = fit::make_validation_data(spec);
-  if (extra)
-    for (std::size_t i = 0; i < d.size(); ++i) d.torque[i] += extra(d, i);
-  return d;
-}
+using test_data::with_effect;
 
 double param(const Finding& f, const std::string& name) {
   for (const auto& [n, v] : f.params)

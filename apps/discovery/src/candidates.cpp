@@ -83,7 +83,9 @@ std::optional<model::SinusoidFit> strongest_periodic(const Binned& b, double f_m
   for (std::size_t k = 0; k < pg.frequency.size(); ++k) {
     const double f = pg.frequency[k];
     bool skip = false;
-    for (const double a : avoid) skip = skip || std::abs(f - a) < resolution;  // the main lobe
+    // Inside a modelled peak's main lobe (its first zeros at ±1 resolution;
+    // a little less, so a neighbour one resolution away stays findable).
+    for (const double a : avoid) skip = skip || std::abs(f - a) < 0.75 * resolution;
     if (!skip && pg.power[k] > best) best = pg.power[k], f_best = f;
   }
   if (best <= 0) return std::nullopt;
@@ -159,9 +161,11 @@ std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& m,
     case EffectId::PeriodicTorque: {
       // Away from the detents and their harmonics, and above once per
       // revolution (gravity's).
+      // Harmonics detent_shape can model are left to it; higher ones (a 5th
+      // of cogging) may be found here and are said to be harmonics.
       std::vector<double> avoid;
       if (base_has_detents(m)) {
-        for (std::size_t k = 1; k <= kShapeHarmonics + 1; ++k) avoid.push_back(static_cast<double>(k) / base_period(m));
+        for (std::size_t k = 1; k <= kShapeHarmonics; ++k) avoid.push_back(static_cast<double>(k) / base_period(m));
       }
       for (const ActiveEffect& e : m.effects) {  // periodic torques found already
         if (e.id == EffectId::PeriodicTorque) avoid.push_back(1.0 / std::abs(e.params[1]));
@@ -209,6 +213,11 @@ std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& m,
       break;
     }
     case EffectId::PositionFriction: {
+      // Moving one way only, sgn(θ̇)·f(θ) is a periodic torque: leave the
+      // name to the simpler effect.
+      std::size_t forward = 0;
+      for (const std::size_t i : train) forward += d.omega[i] > 0 ? 1 : 0;
+      if (std::min(forward, train.size() - forward) < train.size() / 20) return std::nullopt;
       std::vector<double> rs(r.size());
       for (std::size_t j = 0; j < r.size(); ++j) rs[j] = r[j] * model::sgn(d.omega[train[j]]);
       const auto peak = strongest_periodic(bin(d, train, rs), 0.5, {});
@@ -237,11 +246,14 @@ std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& m,
       break;
     }
     case EffectId::Backlash:
-      return grid_search(id, {0.5e-3, 1e-3, 2e-3, 4e-3, 8e-3, 16e-3}, m, d, train);
+      return grid_search(id, {0.5e-3, 1e-3, 1.5e-3, 2e-3, 3e-3, 4e-3, 6e-3, 8e-3, 12e-3, 16e-3}, m, d, train);
     case EffectId::Hysteresis:
       return grid_search(id, {1e-4, 3e-4, 1e-3, 3e-3, 1e-2}, m, d, train);
     default: return std::nullopt;
   }
+  // The fit's parameter block has room for kMaxParams; a model that full
+  // takes no more effects.
+  if (c->flat().size() > static_cast<std::size_t>(kMaxParams)) return std::nullopt;
   fit_extended(*c, d, train, 40);
   return c;
 }
@@ -268,6 +280,8 @@ Params report_params(const ActiveEffect& e, const ExtendedModel& m) {
       Params p{{"cycles_per_rev", 1.0 / base_period(m)}};
       for (std::size_t k = 0; k + 2 <= kShapeHarmonics; ++k) {
         p.emplace_back("h" + std::to_string(k + 2) + "_amplitude_Nm", std::hypot(q[2 * k], q[2 * k + 1]));
+        p.emplace_back("h" + std::to_string(k + 2) + "_cycles_per_rev",
+                       static_cast<double>(k + 2) / base_period(m));
       }
       for (std::size_t k = 0; k + 2 <= kShapeHarmonics; ++k) {
         p.emplace_back("a" + std::to_string(k + 2) + "_Nm", q[2 * k]);
@@ -292,6 +306,26 @@ Params report_params(const ActiveEffect& e, const ExtendedModel& m) {
   }
 }
 
+namespace {
+
+std::string ordinal(int k) {
+  const char* suffix = k % 10 == 1 && k % 100 != 11   ? "st"
+                       : k % 10 == 2 && k % 100 != 12 ? "nd"
+                       : k % 10 == 3 && k % 100 != 13 ? "rd"
+                                                      : "th";
+  return std::to_string(k) + suffix;
+}
+
+// k when f is within 2 % of k times the base detent frequency, else 0.
+int detent_multiple(const ExtendedModel& m, double f) {
+  if (!base_has_detents(m)) return 0;
+  const double ratio = f * base_period(m);
+  const double k = std::round(ratio);
+  return k >= 1 && std::abs(ratio - k) < 0.02 * k ? static_cast<int>(k) : 0;
+}
+
+}  // namespace
+
 Explanation explain(const ActiveEffect& e, const ExtendedModel& m, double before, double after) {
   const Params p = report_params(e, m);
   auto v = [&](const char* name) {
@@ -315,17 +349,30 @@ Explanation explain(const ActiveEffect& e, const ExtendedModel& m, double before
       return {"over position, proportional to angle",
               format("The residual grows with angle, %.3g mN·m per radian: a restoring spring.",
                      v("stiffness_Nm_per_rad") * 1e3) + gain};
-    case EffectId::PeriodicTorque:
+    case EffectId::PeriodicTorque: {
+      const int k = detent_multiple(m, v("cycles_per_rev"));
+      const std::string relation =
+          k > 1 ? format("the %s harmonic of the %.3g detents/rev, beyond what detent_shape models",
+                         ordinal(k).c_str(), 1.0 / base_period(m))
+                : std::string("unrelated to the detents");
       return {format("over position, %.3g cycles/rev", v("cycles_per_rev")),
               format("A second position-periodic torque at %.3g cycles per revolution (period "
-                     "%.3g°), %.3g mN·m, unrelated to the detents: cogging, a second detent track "
-                     "or screw ripple (periodic_torque).",
-                     v("cycles_per_rev"), v("period_rad") * deg, v("amplitude_Nm") * 1e3) + gain};
-    case EffectId::DetentShape:
+                     "%.3g°), %.3g mN·m, %s: cogging, a second detent track or screw ripple "
+                     "(periodic_torque).",
+                     v("cycles_per_rev"), v("period_rad") * deg, v("amplitude_Nm") * 1e3,
+                     relation.c_str()) + gain};
+    }
+    case EffectId::DetentShape: {
+      std::string harmonics;
+      for (std::size_t k = 2; k <= kShapeHarmonics; ++k) {
+        const std::string h = "h" + std::to_string(k);
+        harmonics += format("%s%s %.3g mN·m at %.3g cycles/rev", k == 2 ? "" : (k == kShapeHarmonics ? " and " : ", "),
+                            ordinal(static_cast<int>(k)).c_str(), v((h + "_amplitude_Nm").c_str()) * 1e3,
+                            v((h + "_cycles_per_rev").c_str()));
+      }
       return {format("over position, harmonics of the %.3g detents/rev", v("cycles_per_rev")),
-              format("The detents are not sinusoidal: their 2nd and 3rd harmonics are %.3g and "
-                     "%.3g mN·m (detent_shape).",
-                     v("h2_amplitude_Nm") * 1e3, v("h3_amplitude_Nm") * 1e3) + gain};
+              "The detents are not sinusoidal: their harmonics are " + harmonics + " (detent_shape)." + gain};
+    }
     case EffectId::Stribeck:
       return {format("near zero speed (|θ̇| below about %.3g rad/s)", 2 * v("stribeck_velocity_rad_s")),
               format("Friction is %.3g mN·m above its Coulomb level near zero speed and falls off "

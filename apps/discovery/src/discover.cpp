@@ -7,10 +7,12 @@
 #include <cmath>
 #include <numbers>
 #include <numeric>
+#include <span>
 
 #include "candidates.hpp"
 #include "extended_model.hpp"
 #include "knoblab/discovery/discrepancy.hpp"
+#include "knoblab/discovery/whiteness.hpp"
 #include "knoblab/fit/knob_fit.hpp"
 
 namespace knoblab::discovery {
@@ -21,28 +23,39 @@ using detail::ActiveEffect;
 using detail::ExtendedModel;
 
 struct Split {
-  std::vector<std::size_t> train, held;
+  const fit::FitData* train_data = nullptr;
+  const fit::FitData* held_data = nullptr;  // the same recording, or another
+  std::vector<std::size_t> train, held;     // rows of train_data / held_data
   std::vector<std::size_t> held_block;  // per held row: its block (0 … B/2 − 1)
   std::size_t held_blocks = 0;
 };
 
-// Contiguous time blocks; even ones train, odd ones are held out; each side
-// strided evenly down to max_rows.
-Split split_rows(const fit::FitData& d, const std::vector<char>& usable,
-                 const DiscrepancyOptions& opt) {
-  const std::size_t n = d.size(), B = std::max<std::size_t>(4, opt.blocks);
+// Contiguous time blocks; even ones train, odd ones are held out. With a
+// held-out recording, all of `d` trains and `h`'s B/2 blocks are held out.
+// Each side strided evenly down to max_rows.
+Split split_rows(const fit::FitData& d, const std::vector<char>& usable_d, const fit::FitData& h,
+                 const std::vector<char>& usable_h, const DiscrepancyOptions& opt) {
+  const std::size_t B = std::max<std::size_t>(4, opt.blocks);
+  const bool same = &d == &h;
   std::vector<std::size_t> train, held, held_block;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!usable[i]) continue;
-    const std::size_t b = i * B / n;
-    if (b % 2 == 0) {
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    if (!usable_d[i]) continue;
+    const std::size_t b = i * B / d.size();
+    if (!same || b % 2 == 0) {
       train.push_back(i);
     } else {
       held.push_back(i);
       held_block.push_back(b / 2);
     }
   }
+  for (std::size_t i = 0; !same && i < h.size(); ++i) {
+    if (!usable_h[i]) continue;
+    held.push_back(i);
+    held_block.push_back(i * (B / 2) / h.size());
+  }
   Split s;
+  s.train_data = &d;
+  s.held_data = &h;
   s.held_blocks = B / 2;
   const std::size_t st = std::max<std::size_t>(1, train.size() / opt.max_rows);
   for (std::size_t j = 0; j < train.size(); j += st) s.train.push_back(train[j]);
@@ -79,15 +92,15 @@ std::size_t free_count(const ExtendedModel& m) {
   return k;
 }
 
-Score score(const ExtendedModel& m, const fit::FitData& d, const Split& s) {
+Score score(const ExtendedModel& m, const Split& s) {
   Score out;
-  const std::vector<double> rt = detail::residuals(m, d, s.train);
+  const std::vector<double> rt = detail::residuals(m, *s.train_data, s.train);
   double ss = 0.0;
   for (const double v : rt) ss += v * v;
   const double nt = static_cast<double>(rt.size());
   out.rmse_train = std::sqrt(ss / nt);
   out.bic = nt * std::log(ss / nt) + static_cast<double>(free_count(m)) * std::log(nt);
-  const std::vector<double> rh = detail::residuals(m, d, s.held);
+  const std::vector<double> rh = detail::residuals(m, *s.held_data, s.held);
   std::vector<double> sum(s.held_blocks, 0.0), cnt(s.held_blocks, 0.0);
   double sh = 0.0;
   for (std::size_t j = 0; j < rh.size(); ++j) {
@@ -102,12 +115,16 @@ Score score(const ExtendedModel& m, const fit::FitData& d, const Split& s) {
   return out;
 }
 
-// t of the per-block mean-square drop from `before` to `after`.
+// t of the per-block log mean-square ratio, before over after: is the drop
+// there in most held-out blocks? Relative per block, so a few blocks with
+// large errors (reversal transients) neither carry nor sink an effect.
 double t_of_drop(const Score& before, const Score& after) {
   const std::size_t B = std::min(before.block_mse.size(), after.block_mse.size());
   if (B < 2) return 0.0;
   std::vector<double> drop(B);
-  for (std::size_t b = 0; b < B; ++b) drop[b] = before.block_mse[b] - after.block_mse[b];
+  for (std::size_t b = 0; b < B; ++b) {
+    drop[b] = std::log(std::max(before.block_mse[b], 1e-300) / std::max(after.block_mse[b], 1e-300));
+  }
   const double mean = std::accumulate(drop.begin(), drop.end(), 0.0) / static_cast<double>(B);
   double var = 0.0;
   for (const double x : drop) var += (x - mean) * (x - mean);
@@ -147,33 +164,95 @@ std::vector<EffectId> implemented_effects() {
           EffectId::Hysteresis};
 }
 
-DiscrepancyResult discover(const fit::FitData& d, const DiscrepancyOptions& opt) {
+namespace {
+
+// Samples slower than this are held by static friction (or inside the stick
+// band): no sliding law describes them, so they are left out.
+double slow_speed(const fit::FitData& d, const fit::FitResult& base_fit) {
+  std::vector<double> speed(d.size());
+  for (std::size_t i = 0; i < d.size(); ++i) speed[i] = std::abs(d.omega[i]);
+  const auto k = static_cast<std::ptrdiff_t>(0.95 * static_cast<double>(d.size() - 1));
+  std::nth_element(speed.begin(), speed.begin() + k, speed.end());
+  double slow = 0.02 * speed[static_cast<std::size_t>(k)];
+  if (base_fit.stick) slow = std::max(slow, base_fit.stick->dv);
+  return slow;
+}
+
+std::vector<char> faster_than(const fit::FitData& d, double slow) {
+  std::vector<char> out(d.size());
+  for (std::size_t i = 0; i < d.size(); ++i) out[i] = std::abs(d.omega[i]) >= slow;
+  return out;
+}
+
+// A held-out recording's rows inside the velocity range the training covered
+// (its 0.5 … 99.5 % quantiles, widened by a tenth): the model is checked where
+// it was fitted, not extrapolated (a fast return move before a slow pass).
+std::vector<char> within_training_speeds(const fit::FitData& d, const std::vector<char>& usable_d,
+                                         const fit::FitData& h, double slow) {
+  std::vector<double> w;
+  for (std::size_t i = 0; i < d.size(); ++i)
+    if (usable_d[i]) w.push_back(d.omega[i]);
+  std::vector<char> out = faster_than(h, slow);
+  if (w.empty()) return out;
+  std::sort(w.begin(), w.end());
+  const double lo = w[static_cast<std::size_t>(0.005 * static_cast<double>(w.size() - 1))];
+  const double hi = w[static_cast<std::size_t>(0.995 * static_cast<double>(w.size() - 1))];
+  const double pad = 0.1 * (hi - lo);
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    const double v = h.omega[i];
+    // Only the directions the training saw (a slow pass one way says nothing
+    // about the other).
+    const bool seen = v > 0 ? hi > slow : lo < -slow;
+    out[i] = out[i] && seen && v >= lo - pad && v <= hi + pad;
+  }
+  return out;
+}
+
+void append_trace(ResidualTrace& tr, const fit::FitData& d, std::span<const std::size_t> rows,
+                  const std::vector<double>& before, const std::vector<double>& after, bool held) {
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    const std::size_t i = rows[j];
+    tr.t.push_back(d.t[i]);
+    tr.theta.push_back(d.theta[i]);
+    tr.omega.push_back(d.omega[i]);
+    tr.torque.push_back(d.torque[i]);
+    tr.before.push_back(before[j]);
+    tr.after.push_back(after[j]);
+    tr.heldout.push_back(held ? 1 : 0);
+  }
+}
+
+DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const DiscrepancyOptions& opt) {
   const auto t0 = std::chrono::steady_clock::now();
-  if (d.size() < 200) throw fit::FitDataError("too few samples for discrepancy discovery");
+  if (d.size() < 200 || h.size() < 200) throw fit::FitDataError("too few samples for discrepancy discovery");
   DiscrepancyResult out;
+  out.heldout_recording = &d != &h;
 
   // Base model on the training blocks, as the characterization fits it: its
   // detent search, its stick band (inside which the sliding law does not
   // hold, so those samples are left out of the discovery too).
-  std::vector<char> usable(d.size(), 1);
-  Split s = split_rows(d, usable, opt);
+  const std::vector<char> all_d(d.size(), 1), all_h(h.size(), 1);
+  Split s = split_rows(d, all_d, h, all_h, opt);
   const fit::FitResult base_fit = fit::fit_knob(subset(d, s.train));
   // Near-stuck samples: inside the fitted stick band, and in any case below
   // 2 % of the brisk speed (an effect the base lacks can hide the band from
-  // its estimate; a knob that slow is held by static friction, which no
-  // sliding law describes).
-  std::vector<double> speed(d.size());
-  for (std::size_t i = 0; i < d.size(); ++i) speed[i] = std::abs(d.omega[i]);
-  std::nth_element(speed.begin(), speed.begin() + static_cast<std::ptrdiff_t>(0.95 * static_cast<double>(d.size() - 1)), speed.end());
-  double slow = 0.02 * speed[static_cast<std::size_t>(0.95 * static_cast<double>(d.size() - 1))];
-  if (base_fit.stick) slow = std::max(slow, base_fit.stick->dv);
-  for (std::size_t i = 0; i < d.size(); ++i) usable[i] = std::abs(d.omega[i]) >= slow;
-  s = split_rows(d, usable, opt);
+  // its estimate).
+  const double slow = slow_speed(d, base_fit);
+  const std::vector<char> usable_d = faster_than(d, slow);
+  s = split_rows(d, usable_d, h,
+                 out.heldout_recording ? within_training_speeds(d, usable_d, h, slow) : usable_d, opt);
+  if (s.held.size() < 100) {
+    throw fit::FitDataError(out.heldout_recording
+                                ? "the held-out recording has " + std::to_string(s.held.size()) +
+                                      " rows inside the training's velocity range; it needs 100"
+                                : "too few moving samples for held-out blocks");
+  }
   ExtendedModel m;
   m.base = base_fit.params;
   m.base_fitted = base_fit.fitted;
   detail::fit_extended(m, d, s.train);
-  Score current = score(m, d, s);
+  const ExtendedModel base_model = m;
+  Score current = score(m, s);
   out.base = summary_of(m, current);
   out.train_rows = s.train.size();
   out.heldout_rows = s.held.size();
@@ -193,7 +272,7 @@ DiscrepancyResult discover(const fit::FitData& d, const DiscrepancyOptions& opt)
       std::optional<ExtendedModel> fitted = detail::fit_candidate(id, m, d, s.train, r_train);
       if (!fitted) continue;
       Tried t{std::move(*fitted), {}, 0.0, 0.0};
-      t.score = score(t.model, d, s);
+      t.score = score(t.model, s);
       t.gain = 1.0 - t.score.rmse_held / current.rmse_held;
       t.t = t_of_drop(current, t.score);
       out.candidates.push_back({round, id, t.gain, t.t, false});
@@ -235,8 +314,30 @@ DiscrepancyResult discover(const fit::FitData& d, const DiscrepancyOptions& opt)
     current = best.score;
   }
   out.final_model = summary_of(m, current);
+  append_trace(out.trace, d, s.train, detail::residuals(base_model, d, s.train),
+               detail::residuals(m, d, s.train), false);
+  append_trace(out.trace, h, s.held, detail::residuals(base_model, h, s.held),
+               detail::residuals(m, h, s.held), true);
+  for (auto [summary, residual] : {std::pair{&out.base, &out.trace.before},
+                                   std::pair{&out.final_model, &out.trace.after}}) {
+    const ResidualFigures f = residual_figures(out.trace, *residual);
+    summary->fit_percent = f.fit_percent;
+    summary->whiteness_p = f.whiteness.p;
+    summary->independence_p = f.independence.p;
+  }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
+}
+
+}  // namespace
+
+DiscrepancyResult discover(const fit::FitData& d, const DiscrepancyOptions& opt) {
+  return run(d, d, opt);
+}
+
+DiscrepancyResult discover(const fit::FitData& d, const fit::FitData& heldout,
+                           const DiscrepancyOptions& opt) {
+  return run(d, heldout, opt);
 }
 
 }  // namespace knoblab::discovery

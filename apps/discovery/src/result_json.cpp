@@ -20,7 +20,10 @@ std::string to_json(const DiscrepancyResult& r, int indent) {
   j["base"] = {{"params", params_json(r.base.params)},
                {"rmse_Nm", r.base.rmse_Nm},
                {"heldout_rmse_Nm", r.base.heldout_rmse_Nm},
-               {"bic", r.base.bic}};
+               {"bic", r.base.bic},
+               {"fit_percent", r.base.fit_percent},
+               {"whiteness_p", r.base.whiteness_p},
+               {"independence_p", r.base.independence_p}};
   j["findings"] = nlohmann::ordered_json::array();
   for (const Finding& f : r.findings) {
     j["findings"].push_back({{"effect", std::string(effect_name(f.effect))},
@@ -39,7 +42,10 @@ std::string to_json(const DiscrepancyResult& r, int indent) {
   j["final"] = {{"params", params_json(r.final_model.params)},
                 {"rmse_Nm", r.final_model.rmse_Nm},
                 {"heldout_rmse_Nm", r.final_model.heldout_rmse_Nm},
-                {"bic", r.final_model.bic}};
+                {"bic", r.final_model.bic},
+                {"fit_percent", r.final_model.fit_percent},
+                {"whiteness_p", r.final_model.whiteness_p},
+                {"independence_p", r.final_model.independence_p}};
   j["candidates"] = nlohmann::ordered_json::array();
   for (const CandidateScore& c : r.candidates) {
     j["candidates"].push_back({{"round", c.round},

@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "knoblab/fit/fit_data.hpp"
@@ -42,6 +43,42 @@ double sample_rate(const std::vector<double>& t) {
   return 1.0 / dt[dt.size() / 2];
 }
 
+// Time stamps from a host PC's clock (outside recordings) scatter around
+// their median interval; the filters and differences assume one rate.
+bool irregular(const std::vector<double>& t, double fs) {
+  const double dt = 1.0 / fs;
+  std::size_t off = 0;
+  for (std::size_t i = 1; i < t.size(); ++i) off += std::abs(t[i] - t[i - 1] - dt) > 0.1 * dt ? 1 : 0;
+  return off > t.size() / 100;
+}
+
+double interpolate(const std::vector<double>& x, std::size_t j, double w) {
+  return x[j] + w * (x[j + 1] - x[j]);
+}
+
+// The capture linearly interpolated onto t0 + k/fs; a flag set on either
+// neighbour stays set.
+interchange::Capture resample(const interchange::Capture& c, double fs) {
+  interchange::Capture r;
+  r.alpha_derived = c.alpha_derived;
+  r.omega_derived = c.omega_derived;
+  const double t0 = c.t.front(), span = c.t.back() - t0;
+  const auto n = static_cast<std::size_t>(std::floor(span * fs)) + 1;
+  std::size_t j = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double t = std::min(t0 + static_cast<double>(k) / fs, c.t.back());
+    while (j + 2 < c.size() && c.t[j + 1] < t) ++j;
+    const double w = std::clamp((t - c.t[j]) / (c.t[j + 1] - c.t[j]), 0.0, 1.0);
+    r.t.push_back(t);
+    r.theta.push_back(interpolate(c.theta, j, w));
+    r.omega.push_back(interpolate(c.omega, j, w));
+    r.alpha.push_back(interpolate(c.alpha, j, w));
+    r.torque.push_back(interpolate(c.torque, j, w));
+    if (!c.flags.empty()) r.flags.push_back(c.flags[j] | c.flags[j + 1]);
+  }
+  return r;
+}
+
 // Table 6's filter on one channel; unfiltered when the edge is too close to
 // Nyquist for the filter to mean anything.
 std::vector<double> lowpass(const PrepOptions& o, double edge_hz, double fs,
@@ -54,9 +91,13 @@ std::vector<double> lowpass(const PrepOptions& o, double edge_hz, double fs,
 
 }  // namespace
 
-FitData prepare(const interchange::Capture& c, const PrepOptions& opt) {
-  check_capture(c);
-  const double fs = sample_rate(c.t);
+FitData prepare(const interchange::Capture& capture, const PrepOptions& opt) {
+  check_capture(capture);
+  const double fs = sample_rate(capture.t);
+  const bool resampled = irregular(capture.t, fs);
+  std::optional<interchange::Capture> uniform;
+  if (resampled) uniform = resample(capture, fs);
+  const interchange::Capture& c = uniform ? *uniform : capture;
   const std::vector<double> theta = lowpass(opt, opt.edge_theta_hz, fs, c.theta);
   const std::vector<double> omega =
       lowpass(opt, opt.edge_omega_hz, fs, model::derivative(c.t, theta));
@@ -68,6 +109,7 @@ FitData prepare(const interchange::Capture& c, const PrepOptions& opt) {
   // Leave out the samples the loop flagged, after filtering the whole series.
   FitData d;
   d.rate_hz = fs;
+  d.resampled = resampled;
   for (std::size_t i = 0; i < c.size(); ++i) {
     if (!c.flags.empty() && (c.flags[i] & opt.exclude_flags)) continue;
     d.t.push_back(c.t[i]);

@@ -48,9 +48,18 @@ void write_csv(const Capture& c, std::ostream& out) {
   for (const auto& [key, value] : c.metadata)
     out << "# " << (key.empty() ? value : key + ": " + value) << '\n';
 
-  const std::vector<double>* cols[] = {&c.t, &c.theta, &c.omega, &c.alpha, &c.torque, &c.command};
-  const std::size_t ncols = c.has_command ? 6 : 5;
-  for (std::size_t j = 0; j < ncols; ++j) out << (j ? "," : "") << kChannelNames[j];
+  // Derived ω/α are left out, as they came in: read back, they are derived
+  // again (the same values) and still known as derived, so the fit takes
+  // α from the encoder rather than from a column that only looks measured.
+  const std::vector<double>* all[] = {&c.t, &c.theta, &c.omega, &c.alpha, &c.torque, &c.command};
+  const bool keep[] = {true, true, !c.omega_derived, !c.alpha_derived, true, c.has_command};
+  const std::vector<double>* cols[6];
+  std::size_t ncols = 0;
+  for (std::size_t j = 0; j < 6; ++j) {
+    if (!keep[j]) continue;
+    out << (ncols ? "," : "") << kChannelNames[j];
+    cols[ncols++] = all[j];
+  }
   out << '\n';
 
   // 6 fields × at most 24 chars each for a shortest-form double.

@@ -7,7 +7,7 @@
 //   r.findings[0].effect, r.findings[0].explanation, r.final_model.heldout_rmse_Nm
 //
 // The recording is cut into contiguous time blocks; even blocks train, odd
-// blocks are held out. The base model (Eq. 6, fit_knob's start and stick
+// blocks are held out (or a second recording is held out whole). The base model (Eq. 6, fit_knob's start and stick
 // band) is fitted on the training blocks. Every candidate effect is then
 // fitted jointly with the base parameters (Ceres, autodiff through
 // knoblab/model/effects.hpp) and scored on the held-out blocks. The best
@@ -54,6 +54,12 @@ struct ModelSummary {
   double rmse_Nm = 0.0;      // training rows
   double heldout_rmse_Nm = 0.0;
   double bic = 0.0;
+  // From the residual trace (whiteness.hpp): held-out rows when there are
+  // enough. fit % as MATLAB's compare; p of the Ljung–Box whiteness test and
+  // of the independence from ω test (NaN: too few rows).
+  double fit_percent = 0.0;
+  double whiteness_p = 0.0;
+  double independence_p = 0.0;
 };
 
 struct CandidateScore {      // every candidate of every round, for the report
@@ -64,11 +70,23 @@ struct CandidateScore {      // every candidate of every round, for the report
   bool kept = false;
 };
 
+// The rows the analysis used, with the base model's and the final model's
+// residual (measured − model torque), for plots and whiteness tests.
+// Training rows first, then held-out rows, each in time order.
+struct ResidualTrace {
+  std::vector<double> t, theta, omega, torque;
+  std::vector<double> before, after;  // N·m
+  std::vector<char> heldout;          // 1: a held-out row
+  std::size_t size() const { return t.size(); }
+};
+
 struct DiscrepancyResult {
   ModelSummary base, final_model;
   std::vector<Finding> findings;  // empty: nothing is missing
   std::vector<CandidateScore> candidates;
   std::size_t train_rows = 0, heldout_rows = 0;
+  bool heldout_recording = false;  // held out: another recording, not time blocks
+  ResidualTrace trace;
   double seconds = 0.0;
 };
 
@@ -77,6 +95,13 @@ std::vector<EffectId> implemented_effects();
 
 // Throws fit::FitDataError when the data cannot identify the base model.
 DiscrepancyResult discover(const fit::FitData& data, const DiscrepancyOptions& opt = {});
+
+// The same, trained on the whole of `data` and scored on another recording
+// of the same knob (its time blocks give the held-out t): for recordings
+// that pass each position once, where held-out time blocks would be
+// positions the training never saw.
+DiscrepancyResult discover(const fit::FitData& data, const fit::FitData& heldout,
+                           const DiscrepancyOptions& opt = {});
 
 // {"base": …, "findings": […], "final": …} with the names issue 5 fixes.
 std::string to_json(const DiscrepancyResult& r, int indent = 2);

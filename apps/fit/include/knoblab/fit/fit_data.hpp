@@ -2,6 +2,9 @@
 // units, prepared from a capture the way thesis §2.2.2.2 prepares it.
 //
 // Preparation (prepare()):
+//  * Irregular time stamps (more than 1 % of intervals off the median by
+//    over 10 %: a host PC's clock) are linearly interpolated onto the
+//    median interval first, so filters and differences see one rate.
 //  * 3rd-order Chebyshev II low-pass, 20 dB stop band, edges of Table 6
 //    (θ, θ̇ 1000 Hz; θ̈, τ 500 Hz), run forward and backward (zero phase).
 //    A channel whose edge is at or above 0.9·Nyquist is left unfiltered.
@@ -43,6 +46,7 @@ struct FitData {
   std::vector<double> alpha;  // rad/s²
   std::vector<double> torque; // N·m
   double rate_hz = 0.0;       // sample rate the preparation assumed
+  bool resampled = false;     // irregular time stamps, interpolated onto 1/rate_hz
 
   std::size_t size() const { return t.size(); }
   model::Kinematics<double> kinematics(std::size_t i) const {

@@ -48,8 +48,9 @@ class CsvError : public std::runtime_error {
 Capture parse_csv(std::istream& in, std::string_view source_name);
 Capture read_csv(const std::filesystem::path& path);
 
-// Writes metadata, header and rows; doubles in shortest round-trip form, so
-// read_csv(write_csv(c)) reproduces every value bit for bit. Throws
+// Writes metadata, header and rows (ω, α only when not derived); doubles in
+// shortest round-trip form, so read_csv(write_csv(c)) reproduces every value
+// bit for bit. Throws
 // std::invalid_argument for a capture validate() rejects or for metadata a
 // single comment line cannot hold.
 void write_csv(const Capture& capture, std::ostream& out);
