@@ -1,6 +1,7 @@
 // knoblab discrepancy: where a recording and the fitted knob model disagree,
 // which physics from the effect library is missing, fitted and checked on
 // held-out time blocks (docs/discrepancy.md).
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -55,7 +56,12 @@ std::string figures(const discovery::ModelSummary& m) {
                 m.rmse_Nm * 1e3, m.heldout_rmse_Nm * 1e3, m.fit_percent);
   char p[32];
   std::snprintf(p, sizeof p, "%.2g", m.whiteness_p);
-  return buf + std::string(m.whiteness_p < 1e-12 ? "< 1e-12" : p);
+  std::string out = buf + std::string(m.whiteness_p < 1e-12 ? "< 1e-12" : p);
+  if (std::isfinite(m.forward_rmse_rad)) {
+    std::snprintf(buf, sizeof buf, ", forward θ RMS %.3g mrad", m.forward_rmse_rad * 1e3);
+    out += buf;
+  }
+  return out;
 }
 
 }  // namespace

@@ -110,5 +110,17 @@ TEST(Discover, JsonHasTheNamesOutsideToolsRead) {
   EXPECT_EQ(j["findings"][0]["effect"], "gravity");
 }
 
+TEST(Discover, ForwardViewNeedsAPositiveInertia) {
+  // Driven by the measured torque, M·θ̈ = τ − the model's other terms cannot
+  // be integrated without a positive M: the view says "not available".
+  fit::FitData d = with_effect(7, nullptr);
+  const DiscrepancyResult r = discover(d);
+  EXPECT_TRUE(std::isfinite(r.base.forward_rmse_rad));
+  EXPECT_GT(r.base.forward_rmse_rad, 0.0);
+  for (double& tau : d.torque) tau = -tau;  // the fit's M comes out negative
+  const DiscrepancyResult flipped = discover(d);
+  EXPECT_TRUE(std::isnan(flipped.base.forward_rmse_rad)) << to_json(flipped);
+}
+
 }  // namespace
 }  // namespace knoblab::discovery

@@ -11,6 +11,7 @@
 
 #include "candidates.hpp"
 #include "extended_model.hpp"
+#include "forward_view.hpp"
 #include "knoblab/discovery/discrepancy.hpp"
 #include "knoblab/discovery/whiteness.hpp"
 #include "knoblab/fit/knob_fit.hpp"
@@ -318,6 +319,11 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
                detail::residuals(m, d, s.train), false);
   append_trace(out.trace, h, s.held, detail::residuals(base_model, h, s.held),
                detail::residuals(m, h, s.held), true);
+  // The forward view on the held-out rows, windows begun in time order.
+  for (auto [summary, model] : {std::pair{&out.base, &base_model}, std::pair{&out.final_model, static_cast<const ExtendedModel*>(&m)}}) {
+    const detail::ForwardError fe = detail::forward_error(*model, h, s.held);
+    summary->forward_rmse_rad = fe.windows > 0 ? fe.rms_theta_rad : std::nan("");
+  }
   for (auto [summary, residual] : {std::pair{&out.base, &out.trace.before},
                                    std::pair{&out.final_model, &out.trace.after}}) {
     const ResidualFigures f = residual_figures(out.trace, *residual);

@@ -23,7 +23,8 @@ std::string to_json(const DiscrepancyResult& r, int indent) {
                {"bic", r.base.bic},
                {"fit_percent", r.base.fit_percent},
                {"whiteness_p", r.base.whiteness_p},
-               {"independence_p", r.base.independence_p}};
+               {"independence_p", r.base.independence_p},
+               {"forward_rmse_rad", r.base.forward_rmse_rad}};
   j["findings"] = nlohmann::ordered_json::array();
   for (const Finding& f : r.findings) {
     j["findings"].push_back({{"effect", std::string(effect_name(f.effect))},
@@ -45,7 +46,8 @@ std::string to_json(const DiscrepancyResult& r, int indent) {
                 {"bic", r.final_model.bic},
                 {"fit_percent", r.final_model.fit_percent},
                 {"whiteness_p", r.final_model.whiteness_p},
-                {"independence_p", r.final_model.independence_p}};
+                {"independence_p", r.final_model.independence_p},
+                {"forward_rmse_rad", r.final_model.forward_rmse_rad}};
   j["candidates"] = nlohmann::ordered_json::array();
   for (const CandidateScore& c : r.candidates) {
     j["candidates"].push_back({{"round", c.round},

@@ -60,6 +60,10 @@ struct ModelSummary {
   double fit_percent = 0.0;
   double whiteness_p = 0.0;
   double independence_p = 0.0;
+  // The forward view: the model driven by the measured torque over 20 ms
+  // windows from the measured state, on the held-out data; RMS of the
+  // simulated − measured angle (NaN: no positive inertia to integrate).
+  double forward_rmse_rad = 0.0;
 };
 
 struct CandidateScore {      // every candidate of every round, for the report

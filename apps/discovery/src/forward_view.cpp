@@ -1,0 +1,49 @@
+#include "forward_view.hpp"
+
+#include <cmath>
+#include <vector>
+
+namespace knoblab::discovery::detail {
+
+ForwardError forward_error(const ExtendedModel& m, const fit::FitData& d,
+                           std::span<const std::size_t> starts, double horizon_s) {
+  ForwardError out;
+  const double M = m.base[model::kM_acc];
+  if (!(M > 0.0) || d.size() < 3 || !(horizon_s > 0.0)) return out;
+  const Layout L = layout_of(m);
+  const std::vector<double> p = m.flat();
+  const auto steps = static_cast<std::size_t>(std::ceil(horizon_s * d.rate_hz));
+
+  std::vector<std::size_t> window(steps + 1);
+  double ss_theta = 0.0, ss_omega = 0.0;
+  std::size_t count = 0, next_free = 0;
+  for (const std::size_t i0 : starts) {
+    if (i0 < next_free || i0 + steps >= d.size()) continue;
+    next_free = i0 + steps + 1;
+    for (std::size_t k = 0; k <= steps; ++k) window[k] = i0 + k;
+    const std::vector<RowInputs> in = row_inputs(d, window, m);
+    double theta = d.theta[i0], omega = d.omega[i0];
+    for (std::size_t k = 1; k <= steps; ++k) {
+      RowInputs r = in[k - 1];
+      r.theta = theta, r.omega = omega, r.alpha = 0.0;  // M·θ̈ is what is integrated
+      const double accel = (d.torque[window[k - 1]] - extended_torque(L, p.data(), r)) / M;
+      const double h = d.t[window[k]] - d.t[window[k - 1]];
+      const double next = omega + h * accel;
+      // Dry friction stops the knob; it does not push it back through zero.
+      omega = (omega != 0.0 && next * omega < 0.0) ? 0.0 : next;
+      theta += h * omega;
+      const double et = theta - d.theta[window[k]], ew = omega - d.omega[window[k]];
+      ss_theta += et * et;
+      ss_omega += ew * ew;
+      ++count;
+    }
+    ++out.windows;
+  }
+  if (count > 0) {
+    out.rms_theta_rad = std::sqrt(ss_theta / static_cast<double>(count));
+    out.rms_omega_rad_s = std::sqrt(ss_omega / static_cast<double>(count));
+  }
+  return out;
+}
+
+}  // namespace knoblab::discovery::detail
