@@ -41,9 +41,9 @@ std::string format_p(double p) {
 SummaryText summary_text(const fit::FitData& data, const DiscrepancyResult& r,
                          const ResidualFigures& before, const ResidualFigures& after) {
   SummaryText s;
-  s.table.push_back({"model", "RMS\n(mN·m)", "held-out\nRMS (mN·m)",
-                     before.rows.heldout ? "fit %\n(held-out)" : "fit %\n(all rows)", "BIC",
-                     "whiteness\np", "independence\nof ω, p", "forward θ\nRMS (mrad)"});
+  s.table.push_back({"model", "RMS\nmN·m", "held-out\nRMS mN·m",
+                     before.rows.heldout ? "fit %\nheld-out" : "fit %\nall rows", "BIC",
+                     "white\np", "ω-indep.\np", "forward θ\nRMS mrad"});
   auto row = [&](std::string name, const ModelSummary& m) {
     s.table.push_back({std::move(name), fmt("%.4g", m.rmse_Nm * kmNm),
                        fmt("%.4g", m.heldout_rmse_Nm * kmNm), fmt("%.1f", m.fit_percent),
