@@ -14,9 +14,10 @@
 namespace knoblab::cli {
 namespace {
 
-discovery::DiscrepancyResult discover_with(const std::string& effects) {
+discovery::DiscrepancyResult discover_with(const std::string& effects,
+                                           const std::string& knob = "moderate-detents") {
   SimulationRequest req;
-  req.knob_name = "moderate-detents";
+  req.knob_name = knob;
   req.knob = *sim::presets::knob(req.knob_name);
   req.seconds = 8.0;
   for (const sim::EffectSpec& e : sim::parse_effect_specs(effects)) {
@@ -62,6 +63,23 @@ TEST(DiscrepancySim, StribeckFrictionIsNamed) {
   ASSERT_FALSE(r.findings.empty()) << discovery::to_json(r);
   EXPECT_EQ(r.findings.front().effect, discovery::EffectId::Stribeck) << discovery::to_json(r);
   EXPECT_GT(param(r.findings.front(), "static_excess_Nm"), 0.0);
+}
+
+TEST(DiscrepancySim, AOncePerRevolutionTorqueOnAKnobWithoutDetentsIsNotCalledDetents) {
+  // 2 mN·m once per revolution on the detent-free high-inertia knob: the base
+  // detent search takes it for 1.6 "detents" per revolution, fewer than two
+  // periods inside the ±1 rad sweep. It must come back under the name of a
+  // position trend, not sit in the base as detents. Over ±1 rad, sin θ and
+  // θ − θ³/6 cannot be told apart: gravity or spring.
+  const auto r = discover_with("gravity:A=0.002", "high-inertia");
+  double A = -1.0;
+  for (const auto& [n, v] : r.base.params)
+    if (n == "A_pos") A = v;
+  EXPECT_EQ(A, 0.0) << discovery::to_json(r);
+  ASSERT_FALSE(r.findings.empty()) << discovery::to_json(r);
+  const discovery::EffectId e = r.findings.front().effect;
+  EXPECT_TRUE(e == discovery::EffectId::Gravity || e == discovery::EffectId::Spring) << discovery::to_json(r);
+  EXPECT_LT(r.final_model.heldout_rmse_Nm, 0.85 * r.base.heldout_rmse_Nm);
 }
 
 }  // namespace

@@ -255,6 +255,9 @@ std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& m,
   // takes no more effects.
   if (c->flat().size() > static_cast<std::size_t>(kMaxParams)) return std::nullopt;
   fit_extended(*c, d, train, 40);
+  // A periodic torque that settles under 1.5 cycles per revolution is
+  // gravity's to name.
+  if (id == EffectId::PeriodicTorque && std::abs(c->effects.back().params[1]) > 1.0 / 1.5) return std::nullopt;
   return c;
 }
 
@@ -343,7 +346,7 @@ Explanation explain(const ActiveEffect& e, const ExtendedModel& m, double before
     case EffectId::Gravity:
       return {"over position, once per revolution",
               format("The residual repeats once per revolution with %.3g mN·m amplitude: an "
-                     "unbalanced mass or tilted axis (gravity).",
+                     "unbalanced mass or tilted axis (gravity), or a single detent per revolution.",
                      v("amplitude_Nm") * 1e3) + gain};
     case EffectId::Spring:
       return {"over position, proportional to angle",

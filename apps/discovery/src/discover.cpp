@@ -251,6 +251,16 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
   ExtendedModel m;
   m.base = base_fit.params;
   m.base_fitted = base_fit.fitted;
+  // A "detent" term under 1.5 cycles per revolution, or with fewer than two
+  // periods inside the swept range, is a slow trend over position, not
+  // detents: the base goes without it, and gravity or a spring must earn it
+  // back on held-out data under their own names.
+  const auto [lo, hi] = std::minmax_element(d.theta.begin(), d.theta.end());
+  const double periods = (*hi - *lo) / (2 * std::numbers::pi * std::abs(m.base[model::kP_pos]));
+  if (m.base_fitted[model::kA_pos] && (std::abs(m.base[model::kP_pos]) > 1.0 / 1.5 || periods < 2.0)) {
+    for (const std::size_t k : {model::kA_pos, model::kP_pos, model::kS_pos}) m.base_fitted[k] = false;
+    m.base[model::kA_pos] = 0.0;
+  }
   detail::fit_extended(m, d, s.train);
   const ExtendedModel base_model = m;
   Score current = score(m, s);
@@ -281,6 +291,10 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
     }
     if (tried.empty()) break;
     std::sort(tried.begin(), tried.end(), [](const Tried& a, const Tried& b) { return a.gain > b.gain; });
+    // The largest held-out gain decides; when it is not consistent over the
+    // blocks the search stops, even if a smaller gain would pass: a large
+    // inconsistent gain says the residual holds something no candidate
+    // describes, and a lesser candidate would only stand in for it.
     const Tried& best = tried.front();
     const bool significant = best.gain >= opt.min_heldout_gain && best.t >= opt.min_t &&
                              best.score.bic < current.bic;
