@@ -122,5 +122,21 @@ TEST(Discover, ForwardViewNeedsAPositiveInertia) {
   EXPECT_TRUE(std::isnan(flipped.base.forward_rmse_rad)) << to_json(flipped);
 }
 
+TEST(Discover, NamesAnEndstopAtTheExtremesOfTheTravel) {
+  // Stops at ±3.6 rad of the ±4 rad sweep, 20 N·m/rad (validation-data units:
+  // its noise SD is 1.15 N·m): only the extremes see them.
+  model::Walls<double> stop;
+  stop.lo = -3.6, stop.hi = 3.6, stop.K = 20.0;
+  const DiscrepancyResult r = discover(with_effect(8, [&](const fit::FitData& d, std::size_t i) {
+    return stop.torque(d.theta[i], d.omega[i]);
+  }));
+  ASSERT_FALSE(r.findings.empty()) << to_json(r);
+  const Finding& f = r.findings.front();
+  EXPECT_EQ(f.effect, EffectId::Endstop) << to_json(r);
+  EXPECT_NEAR(param(f, "position_rad"), 3.6, 0.25);
+  EXPECT_GT(param(f, "stiffness_Nm_per_rad"), 10.0);
+  EXPECT_LT(f.heldout_rmse_after_Nm, 0.9 * f.heldout_rmse_before_Nm);
+}
+
 }  // namespace
 }  // namespace knoblab::discovery

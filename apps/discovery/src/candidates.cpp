@@ -254,6 +254,36 @@ std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& m,
       return grid_search(id, {0.5e-3, 1e-3, 1.5e-3, 2e-3, 3e-3, 4e-3, 6e-3, 8e-3, 12e-3, 16e-3}, m, d, train);
     case EffectId::Hysteresis:
       return grid_search(id, {1e-4, 3e-4, 1e-3, 3e-3, 1e-2}, m, d, train);
+    case EffectId::Compliance: {
+      // Coupling stiffness k on a grid spanning the knob's ringing from
+      // 30 Hz to 1 kHz (k = M·(2πf)²); stiffer than that is rigid here.
+      const double M = std::abs(m.base[model::kM_acc]);
+      if (!(M > 0.0)) return std::nullopt;
+      std::vector<double> ks;
+      for (const double f : {30.0, 60.0, 120.0, 250.0, 500.0, 1000.0}) ks.push_back(M * std::pow(2 * kPi * f, 2));
+      return grid_search(id, ks, m, d, train);
+    }
+    case EffectId::Endstop: {
+      // A stop engages only at the extremes of the travel: its position on a
+      // grid of |θ| quantiles, its stiffness from the residual beyond it.
+      std::vector<double> mag;
+      for (const std::size_t i : train) mag.push_back(std::abs(d.theta[i]));
+      std::optional<ExtendedModel> best;
+      double best_rmse = 0.0;
+      for (const double q : {0.8, 0.9, 0.95, 0.98}) {
+        const double at = quantile(mag, q);
+        const auto b = regress({column(train, [&](std::size_t i) {
+                                 const double th = d.theta[i];
+                                 return th > at ? th - at : th < -at ? th + at : 0.0;
+                               })},
+                               r);
+        ExtendedModel e = with(m, {id, {std::max(b[0], 0.0)}, at});
+        const FitReport rep = fit_extended(e, d, train, 6);
+        if (!best || rep.rmse < best_rmse) best = std::move(e), best_rmse = rep.rmse;
+      }
+      c = std::move(best);
+      break;
+    }
     default: return std::nullopt;
   }
   // The fit's parameter block has room for kMaxParams; a model that full
@@ -310,6 +340,12 @@ Params report_params(const ActiveEffect& e, const ExtendedModel& m) {
     case EffectId::Saturation: return {{"limit_Nm", e.setting}};
     case EffectId::Backlash: return {{"width_rad", e.setting}};
     case EffectId::Hysteresis: return {{"presliding_angle_rad", e.setting}};
+    case EffectId::Endstop: return {{"position_rad", e.setting}, {"stiffness_Nm_per_rad", q[0]}};
+    case EffectId::Compliance: {
+      const double M = std::abs(m.base[model::kM_acc]);
+      return {{"stiffness_Nm_per_rad", e.setting},
+              {"frequency_hz", M > 0 ? std::sqrt(e.setting / M) / (2 * kPi) : 0.0}};
+    }
     default: return {};
   }
 }
@@ -417,6 +453,15 @@ Explanation explain(const ActiveEffect& e, const ExtendedModel& m, double before
               format("After a reversal friction turns over within about %.3g mrad instead of "
                      "jumping: presliding hysteresis (Dahl).",
                      3e3 * v("presliding_angle_rad")) + gain};
+    case EffectId::Endstop:
+      return {"at the extremes of the travel",
+              format("Beyond ±%.3g° the torque climbs by %.3g mN·m per radian: a hard stop (endstop).",
+                     v("position_rad") * deg, v("stiffness_Nm_per_rad") * 1e3) + gain};
+    case EffectId::Compliance:
+      return {"after reversals and breakaways (ringing)",
+              format("The knob lags the motor by the coupling's twist: %.3g N·m/rad, ringing near "
+                     "%.3g Hz with the knob's inertia (compliance between actuator and knob).",
+                     v("stiffness_Nm_per_rad"), v("frequency_hz")) + gain};
     default: return {"", std::string(effect_name(e.id)) + "." + gain};
   }
 }

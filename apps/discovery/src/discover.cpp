@@ -162,7 +162,7 @@ std::vector<EffectId> implemented_effects() {
           EffectId::PeriodicTorque,   EffectId::DetentShape, EffectId::Stribeck,
           EffectId::NonlinearDamping, EffectId::PositionFriction, EffectId::Drift,
           EffectId::TimeDelay,        EffectId::Saturation, EffectId::Backlash,
-          EffectId::Hysteresis};
+          EffectId::Hysteresis,       EffectId::Endstop,    EffectId::Compliance};
 }
 
 namespace {

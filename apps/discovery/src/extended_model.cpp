@@ -1,5 +1,7 @@
 #include "extended_model.hpp"
 
+#include "knoblab/model/filters.hpp"
+
 #include <ceres/ceres.h>
 
 #include <algorithm>
@@ -72,6 +74,13 @@ std::vector<RowInputs> row_inputs(const fit::FitData& d, std::span<const std::si
   // sees the motion at t − δ (linear interpolation; clamped at the ends).
   const ActiveEffect* delay = m.find(EffectId::TimeDelay);
   const double shift = delay ? delay->setting * d.rate_hz : 0.0;  // samples
+  // Compliance: the encoder is on the motor; the knob lags it by the
+  // coupling's twist τ/k, so the knob's angle and speed are the motor's less
+  // the measured torque (and its rate) over k. α is left as it is: the
+  // accelerometer already rides on the knob side.
+  const ActiveEffect* compliance = m.find(EffectId::Compliance);
+  std::vector<double> tau_rate;
+  if (compliance) tau_rate = model::derivative(d.t, d.torque);
   auto at = [&](const std::vector<double>& v, std::size_t i) {
     if (shift == 0.0) return v[i];
     const double x = std::clamp(static_cast<double>(i) - shift, 0.0, static_cast<double>(n - 1));
@@ -134,6 +143,11 @@ std::vector<RowInputs> row_inputs(const fit::FitData& d, std::span<const std::si
     r.theta = at(d.theta, i);
     r.omega = at(d.omega, i);
     r.alpha = at(d.alpha, i);
+    if (compliance) {
+      const double k = compliance->setting;
+      r.theta -= d.torque[i] / k;
+      r.omega -= tau_rate[i] / k;
+    }
     if (!knob_shift.empty()) r.theta_shift = knob_shift[i], r.contact = contact[i] != 0;
     if (!z.empty()) r.z = z[i];
     out.push_back(r);
