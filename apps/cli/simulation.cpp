@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <vector>
 
 #include "knoblab/capture/sim_daq.hpp"
 #include "knoblab/hapticd/core.hpp"
@@ -44,8 +45,14 @@ void validate(const SimulationRequest& r) {
 
 SimulationResult simulate(const SimulationRequest& r, store::Store* db) {
   validate(r);
-  capture::SimDaq daq(plant_config(r), r.rate_hz);
-  for (const sim::EffectSpec& e : r.effects) daq.plant().add_effect(sim::make_knob_effect(e));
+  // Rig effects (compliance, delay, clipping) go into the config, the rest
+  // are knob torques on the plant.
+  sim::PlantConfig plant = plant_config(r);
+  std::vector<const sim::EffectSpec*> torques;
+  for (const sim::EffectSpec& e : r.effects)
+    if (!sim::apply_to_plant(e, plant)) torques.push_back(&e);
+  capture::SimDaq daq(plant, r.rate_hz);
+  for (const sim::EffectSpec* e : torques) daq.plant().add_effect(sim::make_knob_effect(*e));
 
   capture::CaptureConfig cfg;
   cfg.rate_hz = r.rate_hz;

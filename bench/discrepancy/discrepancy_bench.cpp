@@ -21,6 +21,7 @@
 #include "knoblab/fit/fit_data.hpp"
 #include "knoblab/sim/presets.hpp"
 #include "simulation.hpp"
+#include "sizing.hpp"
 
 namespace {
 
@@ -67,6 +68,25 @@ const Effect kEffects[] = {
     {"drift", false, [](double r) { return fmt("drift:rate=%.3g,t0=4", 0.8 * r); }},
 };
 
+// Operators (a delay, a clip, a play, presliding): their setting is no torque
+// amplitude, so each is sized by its signature on the clean capture, RMS 2 r
+// over the rows discovery analyses (sizing.hpp) — a 3 r sinusoid's. `quick`:
+// also in --quick (the ctest floor), for those named reliably there.
+struct Operator {
+  const char* id;
+  bool quick;
+  double (*size)(const fit::FitData& clean, const sim::KnobParams& knob, double rms);
+  const char* spec;  // printf format of the setting
+};
+
+const Operator kOperators[] = {
+    {"time_delay", false, bench::size_time_delay, "time_delay:delay=%.3g"},
+    {"saturation", false, bench::size_saturation, "saturation:limit=%.3g"},
+    {"hysteresis", false, bench::size_hysteresis, "hysteresis:presliding=%.3g"},
+    {"backlash", false, bench::size_backlash, "backlash:width=%.3g"},
+};
+constexpr double kOperatorRms = 2.0;  // × r
+
 std::vector<std::string> knobs(bool quick) {
   if (quick) return {"moderate-detents", "high-inertia"};
   return {"moderate-detents", "subtle-detents", "high-inertia", "high-friction"};
@@ -81,7 +101,8 @@ struct Outcome {
   std::string json;
 };
 
-Outcome run_case(const Case& c, std::uint64_t seed) {
+// `prepared`: where to leave the capture as the analysis saw it.
+Outcome run_case(const Case& c, std::uint64_t seed, fit::FitData* prepared = nullptr) {
   cli::SimulationRequest req;
   req.knob_name = c.knob;
   req.knob = *sim::presets::knob(c.knob);
@@ -108,6 +129,7 @@ Outcome run_case(const Case& c, std::uint64_t seed) {
   o.before = r.base.heldout_rmse_Nm;
   o.after = r.final_model.heldout_rmse_Nm;
   o.json = discovery::to_json(r, -1);
+  if (prepared) *prepared = d;
   return o;
 }
 
@@ -143,13 +165,20 @@ int main(int argc, char** argv) {
     for (int seed = 1; seed <= seeds; ++seed) {
       for (const std::string& k : knobs(quick)) {
         // The clean knob first: its residual sizes the concealed effects.
-        Outcome clean = run_case({k, "none", ""}, static_cast<std::uint64_t>(seed));
+        fit::FitData clean_data;
+        Outcome clean = run_case({k, "none", ""}, static_cast<std::uint64_t>(seed), &clean_data);
         const double r = clean.before;
         report(std::move(clean));
-        const bool detents = sim::presets::knob(k)->detents.A != 0.0;
+        const sim::KnobParams knob = *sim::presets::knob(k);
+        const bool detents = knob.detents.A != 0.0;
         for (const Effect& e : kEffects) {
           if (e.needs_detents && !detents) continue;
           report(run_case({k, e.id, e.spec(r)}, static_cast<std::uint64_t>(seed)));
+        }
+        for (const Operator& e : kOperators) {
+          if (quick && !e.quick) continue;
+          const double setting = e.size(clean_data, knob, kOperatorRms * r);
+          report(run_case({k, e.id, fmt(e.spec, setting)}, static_cast<std::uint64_t>(seed)));
         }
       }
     }

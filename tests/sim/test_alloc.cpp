@@ -67,3 +67,21 @@ TEST(Realtime, StepDoesNotAllocate) {
     }
   }
 }
+
+TEST(Realtime, StepWithRigEffectsDoesNotAllocate) {
+  // The torque channel's delay line and the Dahl state live in the Plant.
+  PlantConfig c;
+  c.knob = *presets::knob("moderate-detents");
+  c.knob.presliding = 0.002;
+  c.torque_sensor.delay = 0.003;
+  c.torque_sensor.saturation = 0.01;
+  Plant p(c);
+  g_allocations = 0;
+  g_counting = true;
+  for (int n = 0; n < 2000; ++n) p.step(6.0 * ((n / 500) % 2 ? -1.0 : 1.0), 1e-4);
+  p.step(1.0, 1e-3);
+  p.step(1.0, 1e-6);  // a tiny tick: substeps far under the delay line's grid
+  p.reset();
+  g_counting = false;
+  EXPECT_EQ(g_allocations.load(), 0);
+}

@@ -27,6 +27,7 @@ std::string_view check(const KnobParams& k) {
   if (!finite_nonneg(k.walls.K) || !finite_nonneg(k.walls.B) || !(k.walls.lo <= k.walls.hi))
     return "walls need K, B >= 0 and lo <= hi";
   if (!finite_nonneg(k.backlash) || k.backlash > 0.5) return "backlash must be 0 … 0.5 rad";
+  if (!finite_nonneg(k.presliding) || k.presliding > 0.1) return "presliding angle must be 0 … 0.1 rad";
   return {};
 }
 

@@ -25,6 +25,11 @@ const std::map<std::string, std::set<std::string>>& known() {
       {"spring", {"K", "K3", "theta0"}},
       {"detent_shape", {"a2", "b2", "a3", "b3", "a4", "b4"}},
       {"backlash", {"width"}},
+      {"hysteresis", {"presliding"}},
+      {"endstop", {"position", "stiffness", "damping"}},
+      {"compliance", {"stiffness", "frequency", "damping", "zeta"}},
+      {"time_delay", {"delay"}},
+      {"saturation", {"limit"}},
   };
   return k;
 }
@@ -48,6 +53,35 @@ class TermEffect final : public KnobEffect {
 template <typename F>
 std::unique_ptr<KnobEffect> effect(F f) {
   return std::make_unique<TermEffect<F>>(std::move(f));
+}
+
+void require(const EffectSpec& s, bool ok, const char* why) {
+  if (!ok) throw std::invalid_argument("effect '" + s.id + "': " + why);
+}
+
+// Ranges of the effects that act outside the knob's torque (the torque ones
+// take any finite number, as the fitter does).
+void check_values(const EffectSpec& s) {
+  const auto has = [&](const char* n) { return s.params.count(n) != 0; };
+  if (s.id == "hysteresis") {
+    require(s, get(s, "presliding") > 0.0 && get(s, "presliding") <= 0.1, "presliding must be in (0, 0.1] rad");
+  } else if (s.id == "endstop") {
+    require(s, get(s, "position") > 0.0, "position must be > 0 rad (the stops sit at ±position)");
+    require(s, get(s, "stiffness") > 0.0, "stiffness must be > 0 N·m/rad");
+    require(s, get(s, "damping") >= 0.0, "damping must be >= 0 (dissipative)");
+  } else if (s.id == "compliance") {
+    require(s, has("stiffness") != has("frequency"), "give exactly one of stiffness and frequency");
+    require(s, !(has("damping") && has("zeta")), "give at most one of damping and zeta");
+    require(s, get(s, "stiffness", 1.0) > 0.0 && get(s, "frequency", 1.0) > 0.0,
+            "stiffness and frequency must be > 0");
+    require(s, get(s, "damping") >= 0.0 && get(s, "zeta") >= 0.0, "damping and zeta must be >= 0");
+  } else if (s.id == "time_delay") {
+    require(s, get(s, "delay") >= 0.0,
+            "delay must be >= 0 s (positive: the torque behind the motion; a torque ahead is not modelled)");
+    require(s, get(s, "delay") <= 0.1, "delay must be <= 0.1 s");
+  } else if (s.id == "saturation") {
+    require(s, get(s, "limit") > 0.0, "limit must be > 0 N·m");
+  }
 }
 
 }  // namespace
@@ -94,6 +128,7 @@ std::vector<EffectSpec> parse_effect_specs(std::string_view text) {
         throw std::invalid_argument("effect '" + s.id + "': '" + name + "' is not a number: '" + value + "'");
       s.params[name] = v;
     }
+    check_values(s);
     out.push_back(std::move(s));
   }
   return out;
@@ -110,6 +145,17 @@ bool apply_to_knob(const EffectSpec& s, KnobParams& knob) {
     knob.backlash = get(s, "width");
     return true;
   }
+  if (s.id == "hysteresis") {
+    knob.presliding = get(s, "presliding");
+    return true;
+  }
+  if (s.id == "endstop") {
+    knob.walls.lo = -get(s, "position");
+    knob.walls.hi = get(s, "position");
+    knob.walls.K = get(s, "stiffness");
+    knob.walls.B = get(s, "damping");
+    return true;
+  }
   if (s.id == "detent_shape") {
     for (std::size_t k = 2; k <= 4; ++k) {
       knob.detents.a[k] = get(s, ("a" + std::to_string(k)).c_str());
@@ -119,6 +165,33 @@ bool apply_to_knob(const EffectSpec& s, KnobParams& knob) {
     return true;
   }
   return false;
+}
+
+bool apply_to_plant(const EffectSpec& s, PlantConfig& plant) {
+  if (s.id == "time_delay") {
+    plant.torque_sensor.delay = get(s, "delay");
+    return true;
+  }
+  if (s.id == "saturation") {
+    plant.torque_sensor.saturation = get(s, "limit");
+    return true;
+  }
+  if (s.id != "compliance") return false;
+  CouplingParams& c = plant.coupling;
+  const double J = plant.knob.inertia.M + c.gripper_inertia;
+  const bool tuned = s.params.count("frequency") || s.params.count("zeta");
+  require(s, !tuned || J > 0.0, "frequency and zeta need a knob side with inertia (M + gripper > 0)");
+  const double k = s.params.count("frequency") ? CouplingParams::tuned(get(s, "frequency"), 1.0, J).stiffness
+                                                : get(s, "stiffness");
+  if (s.params.count("damping")) {
+    c.damping = get(s, "damping");
+  } else if (s.params.count("zeta")) {
+    c.damping = 2.0 * get(s, "zeta") * std::sqrt(k * J);
+  } else {
+    c.damping *= std::sqrt(k / c.stiffness);  // the same damping ratio
+  }
+  c.stiffness = k;
+  return true;
 }
 
 std::unique_ptr<KnobEffect> make_knob_effect(const EffectSpec& s) {

@@ -46,6 +46,10 @@ void validate(const PlantConfig& c) {
               c.accel.adc.range > 0,
           "ADC needs 2..31 bits and range > 0");
   require(c.min_substeps >= 1 && c.max_substep > 0, "substeps out of range");
+  // The delay line holds delay / max_substep samples: bound both.
+  require(c.torque_sensor.delay >= 0 && c.torque_sensor.delay <= 0.1 &&
+              c.torque_sensor.delay <= 1e6 * c.max_substep,
+          "torque sensor delay must be 0 … 0.1 s and at most 1e6 substeps");
 }
 
 }  // namespace
@@ -55,7 +59,8 @@ Plant::Plant(const PlantConfig& cfg)
       amp_(cfg_.amp, cfg_.motor),
       accel_(cfg_.accel, cfg_.mounting),
       bearing_{0.0, cfg_.motor.b, 0.0, cfg_.motor.b},
-      knob_inertia_(cfg_.knob.inertia.M + cfg_.coupling.gripper_inertia) {
+      knob_inertia_(cfg_.knob.inertia.M + cfg_.coupling.gripper_inertia),
+      torque_delay_(cfg_.torque_sensor.delay, cfg_.max_substep) {
   const auto& k = cfg_.knob;
   dry_friction_ = k.friction.C_neg > 0 || k.friction.C_pos > 0 || k.stick.dv > 0;
   reset();
@@ -75,6 +80,9 @@ void Plant::reset() {
   play_.width = cfg_.knob.backlash;
   play_.reset(cfg_.initial_angle);
   mech_velocity_ = 0.0;
+  dahl_.presliding = cfg_.knob.presliding;
+  dahl_.reset();
+  torque_delay_.reset(state_.t, state_.coupling_torque);
   accel_.reset(cfg_.initial_angle);
   sample();
 }
@@ -105,6 +113,7 @@ void Plant::substep(double command, double h) {
   const bool on_knob = cfg_.accel.side == AccelerometerParams::Side::Knob;
   accel_.track(on_knob ? s.knob_accel : s.motor_accel, on_knob ? s.knob_angle : s.motor_angle, h);
   s.t += h;
+  if (torque_delay_.active()) torque_delay_.push(s.t, s.coupling_torque);
 }
 
 // The rotor against a knob side that does not move this substep, with the
@@ -220,7 +229,7 @@ void Plant::step_knob(double motor_force, double h) {
         return;
       }
     } else {
-      friction = kp.friction.torque(w);
+      friction = sliding_friction(w);
     }
     mech = tau_pos + friction;
     engaged = pushes(mech);
@@ -264,13 +273,28 @@ void Plant::step_knob(double motor_force, double h) {
   }
   const double a_mech = play ? 0.0 : s.knob_accel;  // massless: no inertia of its own to report
   for (auto& eff : effects_) eff->advance({play ? play_.knob : s.knob_angle, mech_velocity_, a_mech}, s.t, h);
+  // Dahl follows the mechanism's travel (none while stuck: z stands with it).
+  if (kp.presliding > 0.0) dahl_.update(h * mech_velocity_);
+}
+
+// Eq. 6's sliding law, or under presliding hysteresis the Coulomb part as C·z
+// (C_pos for z ≥ 0, C_neg below, as discovery's extended_torque) beside the
+// unchanged viscous part. Dahl is passive (storage C·θ_p·z²/2 grows by at
+// most τ·dθ), so friction stays dissipative over any path.
+double Plant::sliding_friction(double w) const {
+  const model::CoulombViscous<double>& f = cfg_.knob.friction;
+  if (!(cfg_.knob.presliding > 0.0)) return f.torque(w);
+  const double z = dahl_.z;
+  const model::CoulombViscous<double> viscous{0.0, f.B_neg, 0.0, f.B_pos};
+  return (z >= 0.0 ? f.C_pos : f.C_neg) * z + viscous.torque(w);
 }
 
 void Plant::sample() {
   const auto& s = state_;
   readings_.t = s.t;
   readings_.encoder_counts = cfg_.encoder.to_counts(s.motor_angle);
-  readings_.torque_volts = cfg_.torque_sensor.sample(s.coupling_torque, torque_rng_);
+  const double tau = torque_delay_.active() ? torque_delay_.read(s.t) : s.coupling_torque;
+  readings_.torque_volts = cfg_.torque_sensor.sample(tau, torque_rng_);
   readings_.torque = cfg_.torque_sensor.scale.to_torque(readings_.torque_volts);
   readings_.accel_volts = accel_.sample(accel_rng_);
 }

@@ -7,12 +7,12 @@
 //    joins the detents/spring/walls in τ_other of the Karnopp stick test.
 //  * It is called once per substep from the realtime loop: no allocation, no
 //    locks, no I/O. Build the physics from knoblab_model terms.
-//  * advance() lets stateful effects (hysteresis, drift) move on after the
-//    substep; reset() returns them to t = 0.
-// Effects that are not a knob torque get their own seam in plant.cpp rather
-// than this interface: backlash and extra compliance in the coupling step,
-// command delays before the amplifier, sensor saturation/offset/drift in the
-// sensor models.
+//  * advance() lets stateful effects move on after the substep; reset()
+//    returns them to t = 0.
+// Effects that are not a knob torque get their own seam rather than this
+// interface: friction laws and play in KnobParams (presliding hysteresis,
+// backlash, walls), compliance in CouplingParams, the torque channel's delay
+// and clipping in TorqueSensorParams (library_effects.hpp says which).
 #pragma once
 
 #include "knoblab/model/terms.hpp"

@@ -25,11 +25,17 @@ struct KnobParams {
   model::KarnoppStick<double> stick{};     // dv = 0: no stick band
   model::Detents<double> detents{};        // A = 0: none
   model::Spring<double> spring{};          // K = K3 = 0: none
-  model::Walls<double> walls{};            // K = B = 0: none
+  model::Walls<double> walls{};            // K = B = 0: none (endstops)
   // Play between the gripper and the detent mechanism (rad, total): after a
   // reversal the drive turns this far before it pushes the knob again, and
   // the sensor reads nothing meanwhile. Applied in Plant::step_knob.
   double backlash = 0.0;
+  // Presliding hysteresis (rad, Dahl's θ_p; 0: none): while sliding, the
+  // Coulomb part is C·z with z the model::DahlFriction state driven by the
+  // mechanism's travel, so friction turns over within a few θ_p after a
+  // reversal instead of jumping. The Karnopp band still holds the knob (z
+  // stands with it). Applied in Plant::step_knob.
+  double presliding = 0.0;
 };
 
 // Detents + spring + walls: the knob's non-frictional, non-inertial torque.

@@ -21,6 +21,7 @@
 #include "knoblab/sim/accelerometer.hpp"
 #include "knoblab/sim/amplifier.hpp"
 #include "knoblab/sim/coupling.hpp"
+#include "knoblab/sim/delay_line.hpp"
 #include "knoblab/sim/effects.hpp"
 #include "knoblab/sim/knob.hpp"
 #include "knoblab/sim/motor.hpp"
@@ -59,7 +60,7 @@ struct PlantState {
   double motor_angle = 0.0, motor_velocity = 0.0, motor_accel = 0.0;
   double knob_angle = 0.0, knob_velocity = 0.0, knob_accel = 0.0;
   double current = 0.0, voltage = 0.0;  // winding
-  double coupling_torque = 0.0;         // what the torque sensor sees
+  double coupling_torque = 0.0;         // what the torque sensor sees (undelayed)
   bool stuck = false;                   // knob held by the Karnopp band
 };
 
@@ -100,6 +101,7 @@ class Plant {
   void step_knob(double motor_force, double h);
   int play_face() const;
   double mechanism_free_velocity(double tau_pos) const;
+  double sliding_friction(double w) const;
   double effects_torque(const KnobMotion& k) const;
   void sample();
 
@@ -113,6 +115,8 @@ class Plant {
   std::vector<std::unique_ptr<KnobEffect>> effects_;
   model::Backlash play_{};     // the detent mechanism behind the knob's play
   double mech_velocity_ = 0.0;  // its speed over the last substep
+  model::DahlFriction dahl_{};  // presliding state (KnobParams::presliding)
+  DelayLine torque_delay_;      // the torque channel's pipeline (TorqueSensorParams::delay)
   PlantState state_{};
   SensorReadings readings_{};
 };

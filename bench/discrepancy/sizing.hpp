@@ -1,0 +1,29 @@
+// Sizes for the concealed operator effects (time_delay, saturation,
+// hysteresis, backlash), whose setting is an angle, a time or a limit rather
+// than a torque amplitude: each setting is the one whose signature on the
+// clean knob's capture — the operator applied to its prepared motion and
+// torque, minus the torque without it — has a given RMS over the rows
+// discovery analyses (faster than 2 % of the 95th-percentile speed and than
+// the knob's stick band). That puts them on the same footing as the torque
+// effects, whose amplitudes are multiples of the clean residual r. Settings
+// stay within the range discovery searches (delay ≤ 5 ms, presliding angle
+// ≤ 10 mrad, backlash ≤ 16 mrad): past it the benchmark would test the grid's
+// reach, not the naming; where the bound holds the signature falls short.
+#pragma once
+
+#include "knoblab/fit/fit_data.hpp"
+#include "knoblab/sim/knob.hpp"
+
+namespace knoblab::bench {
+
+// delay_s: τ(t) − τ(t − δ).
+double size_time_delay(const fit::FitData& clean, const sim::KnobParams& knob, double rms);
+// limit_Nm: τ − saturate(τ, L).
+double size_saturation(const fit::FitData& clean, const sim::KnobParams& knob, double rms);
+// presliding_rad: C·z (Dahl) − C·sgn(ω).
+double size_hysteresis(const fit::FitData& clean, const sim::KnobParams& knob, double rms);
+// width_rad: the knob's position torque at the played-off mechanism; out of
+// contact, none of the knob's position torque and friction.
+double size_backlash(const fit::FitData& clean, const sim::KnobParams& knob, double rms);
+
+}  // namespace knoblab::bench
