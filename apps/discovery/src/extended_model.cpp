@@ -165,8 +165,12 @@ struct ChunkCost {
   std::span<const double> torque;
   template <typename T>
   bool operator()(const T* p, T* residual) const {
+    using std::isfinite;  // and ceres::isfinite for Jets, by ADL
     for (std::size_t j = 0; j < rows.size(); ++j) {
       residual[j] = extended_torque(*layout, p, rows[j]) - T(torque[j]);
+      // A trial step that overflows (a power law's exponent, a runaway
+      // operator) is refused quietly; Ceres shrinks the step.
+      if (!isfinite(residual[j])) return false;
     }
     return true;
   }
