@@ -7,12 +7,14 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <system_error>
 #include <utility>
 
 #include "knoblab/discovery/whiteness.hpp"
+#include "knoblab/fit/plplot_shared.hpp"
 #include "report_plot.hpp"
 #include "report_summary.hpp"
 
@@ -42,7 +44,7 @@ std::string fmt(const char* f, double v) {
 }
 
 std::string titled(const Inputs& in, const std::string& what) {
-  return in.opt.title.empty() ? what : plot::escape(in.opt.title) + " — " + what;
+  return in.opt.title.empty() ? what : fit::plplot_escape(in.opt.title) + " — " + what;
 }
 
 std::string rows_subtitle(const Inputs& in) {
@@ -202,10 +204,10 @@ Page summary_page(const Inputs& in, const detail::SummaryText& s) {
                             (in.r.findings.size() > 1 ? "s" : "") + ": " + added_effects(in.r);
   for (const auto& row : s.table) {
     page.table.emplace_back();
-    for (const std::string& cell : row) page.table.back().push_back(plot::escape(cell));
+    for (const std::string& cell : row) page.table.back().push_back(fit::plplot_escape(cell));
   }
-  for (const std::string& f : s.findings) page.paragraphs.push_back(plot::escape(f));
-  for (const std::string& n : s.notes) page.notes.push_back(plot::escape(n));
+  for (const std::string& f : s.findings) page.paragraphs.push_back(fit::plplot_escape(f));
+  for (const std::string& n : s.notes) page.notes.push_back(fit::plplot_escape(n));
   return page;
 }
 
@@ -248,7 +250,7 @@ std::vector<fs::path> write_discrepancy_report(const fs::path& dir, const fit::F
 
   std::vector<fs::path> written;
   {
-    const std::lock_guard<std::mutex> lock(plot::plplot_mutex());
+    const std::lock_guard<std::mutex> lock(fit::plplot_mutex());
     for (const auto& [stem, page] : pages) {
       for (const bool svg : {false, true}) {
         const fs::path file = dir / (std::string(stem) + (svg ? ".svg" : ".png"));

@@ -293,19 +293,6 @@ void draw_page(const Page& page, int width_px, int height_px, bool vector) {
 
 }  // namespace
 
-std::mutex& plplot_mutex() {
-  static std::mutex m;
-  return m;
-}
-
-std::string escape(const std::string& s) {
-  std::string out;
-  for (const char c : s) {
-    out += c;
-    if (c == '#') out += '#';
-  }
-  return out;
-}
 
 void render(const Page& page, const fs::path& file, bool svg, int width_px, int height_px) {
   // Opened here: PLplot would prompt on stdin and exit() on a path it cannot

@@ -1,11 +1,10 @@
 // A small PLplot page drawer for the discrepancy report: a grid of panels
 // (point clouds, stems, lines, shaded bands) or a page of text and a table.
 // Internal to knoblab_discovery_report. (apps/fit/src/report.cpp has a
-// richer one, private to that file.)
+// richer one, private to that file; the two share only the lock and escape.)
 #pragma once
 
 #include <filesystem>
-#include <mutex>
 #include <string>
 #include <vector>
 
@@ -45,12 +44,9 @@ struct Page {
 
 // Writes `page` as PNG (pngcairo) or SVG (svgcairo). Throws
 // std::runtime_error naming `file` when it cannot be written. Callers hold
-// plplot_mutex(): PLplot keeps global state.
+// fit::plplot_mutex() (knoblab/fit/plplot_shared.hpp), the lock the fit
+// report takes too: PLplot keeps global state.
 void render(const Page& page, const std::filesystem::path& file, bool svg, int width_px,
             int height_px);
-std::mutex& plplot_mutex();
-
-// PLplot's escape character doubled, so text is shown as written.
-std::string escape(const std::string& s);
 
 }  // namespace knoblab::discovery::plot

@@ -18,6 +18,7 @@
 // kinematic variables), averaged over neighbouring samples along the axis so
 // the dashed line is a curve rather than noise.
 #include "knoblab/fit/report.hpp"
+#include "knoblab/fit/plplot_shared.hpp"
 
 #include <plplot.h>
 
@@ -212,15 +213,6 @@ Layer curve(std::string label, Mark mark, PLINT color, double width, int rank) {
   l.size = width;
   l.legend_rank = rank;
   return l;
-}
-
-std::string escape_plplot(const std::string& s) {
-  std::string out;
-  for (const char c : s) {
-    out += c;
-    if (c == '#') out += '#';  // PLplot's text escape character
-  }
-  return out;
 }
 
 std::string fmt(const char* f, double v) {
@@ -517,11 +509,6 @@ void draw_page(const Page& page, const ReportOptions& opt, bool vector) {
   }
 }
 
-std::mutex& plplot_mutex() {
-  static std::mutex m;
-  return m;
-}
-
 [[noreturn]] void fail(const fs::path& file, const std::string& why) {
   throw std::runtime_error("knoblab::fit::write_report: cannot write " + file.string() + ": " +
                            why);
@@ -712,7 +699,7 @@ Panel residual_panel(const Inputs& in, const std::vector<double>& x, const std::
 }
 
 std::string with_title(const ReportOptions& opt, const std::string& what) {
-  return opt.title.empty() ? what : escape_plplot(opt.title) + " — " + what;
+  return opt.title.empty() ? what : plplot_escape(opt.title) + " — " + what;
 }
 
 std::string summary(const FitResult& r, std::size_t n) {
