@@ -14,17 +14,24 @@ ForwardError forward_error(const ExtendedModel& m, const fit::FitData& d,
   const std::vector<double> p = m.flat();
   const auto steps = static_cast<std::size_t>(std::ceil(horizon_s * d.rate_hz));
 
-  std::vector<std::size_t> window(steps + 1);
-  double ss_theta = 0.0, ss_omega = 0.0;
-  std::size_t count = 0, next_free = 0;
+  // The windows' rows, gathered first: the operators run over the whole
+  // recording once (row_inputs), not once per window.
+  std::vector<std::size_t> rows;
+  std::size_t next_free = 0;
   for (const std::size_t i0 : starts) {
     if (i0 < next_free || i0 + steps >= d.size()) continue;
     next_free = i0 + steps + 1;
-    for (std::size_t k = 0; k <= steps; ++k) window[k] = i0 + k;
-    const std::vector<RowInputs> in = row_inputs(d, window, m);
-    double theta = d.theta[i0], omega = d.omega[i0];
+    for (std::size_t k = 0; k <= steps; ++k) rows.push_back(i0 + k);
+  }
+  const std::vector<RowInputs> in = row_inputs(d, rows, m);
+
+  double ss_theta = 0.0, ss_omega = 0.0;
+  std::size_t count = 0;
+  for (std::size_t w = 0; w + steps < rows.size(); w += steps + 1) {
+    const std::size_t* window = rows.data() + w;
+    double theta = d.theta[window[0]], omega = d.omega[window[0]];
     for (std::size_t k = 1; k <= steps; ++k) {
-      RowInputs r = in[k - 1];
+      RowInputs r = in[w + k - 1];
       r.theta = theta, r.omega = omega, r.alpha = 0.0;  // M·θ̈ is what is integrated
       const double accel = (d.torque[window[k - 1]] - extended_torque(L, p.data(), r)) / M;
       const double h = d.t[window[k]] - d.t[window[k - 1]];
