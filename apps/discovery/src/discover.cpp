@@ -93,28 +93,50 @@ std::size_t free_count(const ExtendedModel& m) {
   return k;
 }
 
-Score score(const ExtendedModel& m, const Split& s) {
+// A model's residuals on the training and held-out rows (NaN where it does
+// not describe a row).
+struct Residuals {
+  std::vector<double> train, held;
+  std::size_t free = 0;
+};
+
+Residuals residuals_of(const ExtendedModel& m, const Split& s) {
+  return {detail::residuals(m, *s.train_data, s.train), detail::residuals(m, *s.held_data, s.held),
+          free_count(m)};
+}
+
+// Error figures of `r` on the rows it and `other` both describe: two models
+// are compared on the same rows (a delay moves some rows' inputs into the
+// stick band).
+Score score(const Residuals& r, const Residuals& other, const Split& s) {
+  const auto both = [](double a, double b) { return !std::isnan(a) && !std::isnan(b); };
   Score out;
-  const std::vector<double> rt = detail::residuals(m, *s.train_data, s.train);
-  double ss = 0.0;
-  for (const double v : rt) ss += v * v;
-  const double nt = static_cast<double>(rt.size());
+  double ss = 0.0, nt = 0.0;
+  for (std::size_t j = 0; j < r.train.size(); ++j) {
+    if (!both(r.train[j], other.train[j])) continue;
+    ss += r.train[j] * r.train[j];
+    nt += 1.0;
+  }
+  if (nt == 0.0) return out;
   out.rmse_train = std::sqrt(ss / nt);
-  out.bic = nt * std::log(ss / nt) + static_cast<double>(free_count(m)) * std::log(nt);
-  const std::vector<double> rh = detail::residuals(m, *s.held_data, s.held);
+  out.bic = nt * std::log(ss / nt) + static_cast<double>(r.free) * std::log(nt);
   std::vector<double> sum(s.held_blocks, 0.0), cnt(s.held_blocks, 0.0);
-  double sh = 0.0;
-  for (std::size_t j = 0; j < rh.size(); ++j) {
-    sh += rh[j] * rh[j];
-    sum[s.held_block[j]] += rh[j] * rh[j];
+  double sh = 0.0, nh = 0.0;
+  for (std::size_t j = 0; j < r.held.size(); ++j) {
+    if (!both(r.held[j], other.held[j])) continue;
+    sh += r.held[j] * r.held[j];
+    nh += 1.0;
+    sum[s.held_block[j]] += r.held[j] * r.held[j];
     cnt[s.held_block[j]] += 1.0;
   }
-  out.rmse_held = rh.empty() ? 0.0 : std::sqrt(sh / static_cast<double>(rh.size()));
+  out.rmse_held = nh > 0 ? std::sqrt(sh / nh) : 0.0;
   for (std::size_t b = 0; b < s.held_blocks; ++b) {
     if (cnt[b] > 0) out.block_mse.push_back(sum[b] / cnt[b]);
   }
   return out;
 }
+
+Score score(const Residuals& r, const Split& s) { return score(r, r, s); }
 
 // t of the per-block log mean-square ratio, before over after: is the drop
 // there in most held-out blocks? Relative per block, so a few blocks with
@@ -212,6 +234,9 @@ std::vector<char> within_training_speeds(const fit::FitData& d, const std::vecto
 void append_trace(ResidualTrace& tr, const fit::FitData& d, std::span<const std::size_t> rows,
                   const std::vector<double>& before, const std::vector<double>& after, bool held) {
   for (std::size_t j = 0; j < rows.size(); ++j) {
+    // Rows a model does not describe (a delay moved its inputs into the stick
+    // band) have no residual to show.
+    if (std::isnan(before[j]) || std::isnan(after[j])) continue;
     const std::size_t i = rows[j];
     tr.t.push_back(d.t[i]);
     tr.theta.push_back(d.theta[i]);
@@ -251,6 +276,7 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
   ExtendedModel m;
   m.base = base_fit.params;
   m.base_fitted = base_fit.fitted;
+  m.stick_speed = slow;
   // A "detent" term under 1.5 cycles per revolution, or with fewer than two
   // periods inside the swept range, is a slow trend over position, not
   // detents: the base goes without it, and gravity or a spring must earn it
@@ -263,17 +289,20 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
   }
   detail::fit_extended(m, d, s.train);
   const ExtendedModel base_model = m;
-  Score current = score(m, s);
+  Residuals current_res = residuals_of(m, s);
+  Score current = score(current_res, s);
   out.base = summary_of(m, current);
   out.train_rows = s.train.size();
   out.heldout_rows = s.held.size();
 
   const std::vector<EffectId> pool = opt.effects.empty() ? implemented_effects() : opt.effects;
   for (int round = 0; out.findings.size() < opt.max_findings; ++round) {
-    const std::vector<double> r_train = detail::residuals(m, d, s.train);
+    // Rows the model does not describe add nothing to a candidate's start.
+    std::vector<double> r_train = current_res.train;
+    for (double& v : r_train) v = std::isnan(v) ? 0.0 : v;
     struct Tried {
       ExtendedModel model;
-      Score score;
+      Score score, before;  // the candidate, and the current model on the same rows
       double gain = 0.0, t = 0.0;
     };
     std::vector<Tried> tried;
@@ -282,10 +311,12 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
       if (m.has(id) && id != EffectId::PeriodicTorque) continue;
       std::optional<ExtendedModel> fitted = detail::fit_candidate(id, m, d, s.train, r_train);
       if (!fitted) continue;
-      Tried t{std::move(*fitted), {}, 0.0, 0.0};
-      t.score = score(t.model, s);
-      t.gain = 1.0 - t.score.rmse_held / current.rmse_held;
-      t.t = t_of_drop(current, t.score);
+      Tried t{std::move(*fitted), {}, {}, 0.0, 0.0};
+      const Residuals r = residuals_of(t.model, s);
+      t.score = score(r, current_res, s);
+      t.before = score(current_res, r, s);
+      t.gain = t.before.rmse_held > 0 ? 1.0 - t.score.rmse_held / t.before.rmse_held : 0.0;
+      t.t = t_of_drop(t.before, t.score);
       out.candidates.push_back({round, id, t.gain, t.t, false});
       tried.push_back(std::move(t));
     }
@@ -297,7 +328,7 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
     // describes, and a lesser candidate would only stand in for it.
     const Tried& best = tried.front();
     const bool significant = best.gain >= opt.min_heldout_gain && best.t >= opt.min_t &&
-                             best.score.bic < current.bic;
+                             best.score.bic < best.before.bic;
     if (!significant) break;
     const ActiveEffect& added = best.model.effects.back();
     for (CandidateScore& c : out.candidates)
@@ -306,11 +337,11 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
     Finding f;
     f.effect = added.id;
     f.params = detail::report_params(added, best.model);
-    f.rmse_before_Nm = current.rmse_train;
+    f.rmse_before_Nm = best.before.rmse_train;
     f.rmse_after_Nm = best.score.rmse_train;
-    f.heldout_rmse_before_Nm = current.rmse_held;
+    f.heldout_rmse_before_Nm = best.before.rmse_held;
     f.heldout_rmse_after_Nm = best.score.rmse_held;
-    f.bic_before = current.bic;
+    f.bic_before = best.before.bic;
     f.bic_after = best.score.bic;
     f.t_stat = best.t;
     // Confidence: how consistent the held-out gain is (t), and how clearly
@@ -320,13 +351,15 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
     const double margin = std::clamp(1.0 - runner_up / best.gain, 0.0, 1.0);
     const double consistency = 1.0 - std::exp(-best.t / 4.0);
     f.confidence = std::clamp(consistency * (0.5 + 0.5 * margin), 0.0, 1.0);
-    const detail::Explanation ex = detail::explain(added, best.model, current.rmse_held, best.score.rmse_held);
+    const detail::Explanation ex =
+        detail::explain(added, best.model, best.before.rmse_held, best.score.rmse_held);
     f.where = ex.where;
     f.explanation = ex.sentence;
     out.findings.push_back(std::move(f));
 
     m = best.model;
-    current = best.score;
+    current_res = residuals_of(m, s);
+    current = score(current_res, s);
   }
   out.final_model = summary_of(m, current);
   append_trace(out.trace, d, s.train, detail::residuals(base_model, d, s.train),

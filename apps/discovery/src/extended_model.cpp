@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace knoblab::discovery::detail {
@@ -150,6 +151,7 @@ std::vector<RowInputs> row_inputs(const fit::FitData& d, std::span<const std::si
     }
     if (!knob_shift.empty()) r.theta_shift = knob_shift[i], r.contact = contact[i] != 0;
     if (!z.empty()) r.z = z[i];
+    r.described = std::abs(r.omega) >= m.stick_speed;
     out.push_back(r);
   }
   return out;
@@ -165,12 +167,18 @@ struct ChunkCost {
   std::span<const double> torque;
   template <typename T>
   bool operator()(const T* p, T* residual) const {
-    using std::isfinite;  // and ceres::isfinite for Jets, by ADL
+    using std::abs;
+    using std::isfinite;  // and ceres::isfinite, ceres::abs for Jets, by ADL
     for (std::size_t j = 0; j < rows.size(); ++j) {
+      if (!rows[j].described) {
+        residual[j] = T(0);
+        continue;
+      }
       residual[j] = extended_torque(*layout, p, rows[j]) - T(torque[j]);
       // A trial step that overflows (a power law's exponent, a runaway
-      // operator) is refused quietly; Ceres shrinks the step.
-      if (!isfinite(residual[j])) return false;
+      // operator), or whose squares would, is refused quietly; Ceres
+      // shrinks the step.
+      if (!isfinite(residual[j]) || abs(residual[j]) > T(1e100)) return false;
     }
     return true;
   }
@@ -222,10 +230,13 @@ FitReport fit_extended(ExtendedModel& m, const fit::FitData& d, std::span<const 
     p.resize(used);
     m.unflatten(p);
   }
-  const std::vector<double> r = residuals(m, d, rows);
-  double ss = 0.0;
-  for (const double v : r) ss += v * v;
-  out.rmse = rows.empty() ? 0.0 : std::sqrt(ss / static_cast<double>(rows.size()));
+  double ss = 0.0, n = 0.0;
+  for (const double v : residuals(m, d, rows)) {
+    if (std::isnan(v)) continue;
+    ss += v * v;
+    n += 1.0;
+  }
+  out.rmse = n > 0 ? std::sqrt(ss / n) : 0.0;
   return out;
 }
 
@@ -236,7 +247,8 @@ std::vector<double> residuals(const ExtendedModel& m, const fit::FitData& d,
   const std::vector<RowInputs> in = row_inputs(d, rows, m);
   std::vector<double> r(rows.size());
   for (std::size_t j = 0; j < rows.size(); ++j) {
-    r[j] = d.torque[rows[j]] - extended_torque(L, p.data(), in[j]);
+    r[j] = in[j].described ? d.torque[rows[j]] - extended_torque(L, p.data(), in[j])
+                           : std::numeric_limits<double>::quiet_NaN();
   }
   return r;
 }

@@ -34,6 +34,10 @@ struct ExtendedModel {
   std::vector<double> base;  // Eq. 6, fit order
   std::vector<bool> base_fitted;
   std::vector<ActiveEffect> effects;
+  // Below this speed the sliding law does not hold (the knob is held by
+  // static friction): a row whose model inputs are slower is not described
+  // by the model (RowInputs::described), wherever the operators moved it.
+  double stick_speed = 0.0;
 
   bool has(EffectId id) const;
   const ActiveEffect* find(EffectId id) const;
@@ -49,6 +53,9 @@ struct RowInputs {
   double theta_shift = 0.0;  // backlash: knob − drive
   bool contact = true;       // backlash: the drive moves the knob
   double z = 0.0;            // hysteresis: friction state, −1 … 1
+  // The inputs are outside the stick band (ExtendedModel::stick_speed): a
+  // delay or a coupling's twist can move a moving row's inputs into it.
+  bool described = true;
 };
 
 // Rows of `d` (indices `rows`) with the operator settings of `m` applied.
@@ -146,9 +153,9 @@ T extended_torque(const Layout& L, const T* p, const RowInputs& r) {
   return tau;
 }
 
-// Least squares of the extended model over the rows (Ceres, autodiff, every
-// parameter of the flat vector free except held base ones). Returns the RMS
-// residual over the rows.
+// Least squares of the extended model over the rows it describes (Ceres,
+// autodiff, every parameter of the flat vector free except held base ones).
+// Returns the RMS residual over those rows.
 struct FitReport {
   double rmse = 0.0;
   int iterations = 0;
@@ -156,7 +163,8 @@ struct FitReport {
 FitReport fit_extended(ExtendedModel& m, const fit::FitData& d, std::span<const std::size_t> rows,
                        int max_iterations = 50);
 
-// Residuals (measured − model) at the rows.
+// Residuals (measured − model) at the rows; NaN where the model does not
+// describe the row (RowInputs::described).
 std::vector<double> residuals(const ExtendedModel& m, const fit::FitData& d,
                               std::span<const std::size_t> rows);
 

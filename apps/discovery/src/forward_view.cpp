@@ -1,5 +1,6 @@
 #include "forward_view.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -24,6 +25,16 @@ ForwardError forward_error(const ExtendedModel& m, const fit::FitData& d,
     for (std::size_t k = 0; k <= steps; ++k) rows.push_back(i0 + k);
   }
   const std::vector<RowInputs> in = row_inputs(d, rows, m);
+  // Under a time_delay the torque that moved the knob at row i is the one
+  // the channel shows δ later.
+  const ActiveEffect* delay = m.find(EffectId::TimeDelay);
+  const double shift = delay ? delay->setting * d.rate_hz : 0.0;  // samples
+  const auto torque_at = [&](std::size_t i) {
+    const double x = std::clamp(static_cast<double>(i) + shift, 0.0, static_cast<double>(d.size() - 1));
+    const auto lo = static_cast<std::size_t>(x);
+    const std::size_t hi = std::min(lo + 1, d.size() - 1);
+    return d.torque[lo] + (x - static_cast<double>(lo)) * (d.torque[hi] - d.torque[lo]);
+  };
 
   double ss_theta = 0.0, ss_omega = 0.0;
   std::size_t count = 0;
@@ -33,7 +44,7 @@ ForwardError forward_error(const ExtendedModel& m, const fit::FitData& d,
     for (std::size_t k = 1; k <= steps; ++k) {
       RowInputs r = in[w + k - 1];
       r.theta = theta, r.omega = omega, r.alpha = 0.0;  // M·θ̈ is what is integrated
-      const double accel = (d.torque[window[k - 1]] - extended_torque(L, p.data(), r)) / M;
+      const double accel = (torque_at(window[k - 1]) - extended_torque(L, p.data(), r)) / M;
       const double h = d.t[window[k]] - d.t[window[k - 1]];
       const double next = omega + h * accel;
       // Dry friction stops the knob; it does not push it back through zero.
