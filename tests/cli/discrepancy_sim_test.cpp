@@ -82,6 +82,18 @@ TEST(DiscrepancySim, ATorqueChannelDelayIsNamedWithItsLength) {
   EXPECT_LT(r.final_model.forward_rmse_rad, 0.8 * r.base.forward_rmse_rad);
 }
 
+TEST(DiscrepancySim, AClippedTorqueSensorIsNamedWithItsLimit) {
+  // The sensor clips at ±14.6 mN·m, under the knob's 22.6 mN·m peaks: 4.7 %
+  // of the samples sit on the limit as recorded. The Table 6 low-pass rings
+  // at each corner, so the flat tops are looked for before it.
+  const auto r = discover_with("saturation:limit=0.0146");
+  ASSERT_FALSE(r.findings.empty()) << discovery::to_json(r);
+  const discovery::Finding& f = r.findings.front();
+  EXPECT_EQ(f.effect, discovery::EffectId::Saturation) << discovery::to_json(r);
+  EXPECT_NEAR(param(f, "limit_Nm"), 0.0146, 0.0003);
+  EXPECT_LT(f.heldout_rmse_after_Nm, 0.8 * f.heldout_rmse_before_Nm);
+}
+
 TEST(DiscrepancySim, AOncePerRevolutionTorqueOnAKnobWithoutDetentsIsNotCalledDetents) {
   // 2 mN·m once per revolution on the detent-free high-inertia knob: the base
   // detent search takes it for 1.6 "detents" per revolution, fewer than two

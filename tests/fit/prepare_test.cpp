@@ -47,6 +47,10 @@ TEST(Prepare, TableSixFilterRemovesTheHumAndKeepsTheSignalInPhase) {
   PrepOptions raw;
   raw.filter = false;
   EXPECT_GT(rms_between(prepare(c, raw).torque, slow, 100), 0.001);
+  // The torque as recorded rides along, hum and all (a clipped sensor's flat
+  // tops are seen there, not after the filter's ringing).
+  ASSERT_EQ(d.torque_recorded.size(), d.size());
+  EXPECT_EQ(d.torque_recorded, c.torque);
 }
 
 TEST(Prepare, VelocityFromTheEncoderAccelerationFromTheAccelerometerByDefault) {
@@ -82,6 +86,7 @@ TEST(Prepare, FlaggedSamplesAreFilteredWithTheRestThenLeftOut) {
   EXPECT_EQ(d.size(), c.size() - 501);
   EXPECT_EQ(d.t[100], c.t[101]);
   EXPECT_EQ(d.t[2999], c.t[3000 + 500]);
+  EXPECT_EQ(d.torque_recorded[2999], c.torque[3000 + 500]);
 }
 
 TEST(Prepare, RejectsDataAFitCannotUse) {

@@ -241,12 +241,17 @@ std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& m,
       return grid_search(id, {-5e-3, -2e-3, -1e-3, -5e-4, -2e-4, 2e-4, 5e-4, 1e-3, 2e-3, 5e-3}, m,
                          d, train);
     case EffectId::Saturation: {
-      // Only when the torque has flat tops: a share of samples at its extreme.
+      // Only when the torque has flat tops: samples sitting on its extreme
+      // value. Looked for in the torque as recorded, where a clipped
+      // sensor's samples equal the limit (hundreds of rows; one or two reach
+      // an unclipped signal's peak); the low-pass rings at each corner and
+      // lifts the filtered extreme off the flat.
+      const std::vector<double>& tau = d.torque_recorded.size() == d.size() ? d.torque_recorded : d.torque;
       double top = 0.0;
-      for (const std::size_t i : train) top = std::max(top, std::abs(d.torque[i]));
+      for (const std::size_t i : train) top = std::max(top, std::abs(tau[i]));
       std::size_t at_top = 0;
-      for (const std::size_t i : train) at_top += std::abs(d.torque[i]) > 0.995 * top ? 1 : 0;
-      if (at_top < train.size() / 200 || !(top > 0)) return std::nullopt;
+      for (const std::size_t i : train) at_top += std::abs(tau[i]) >= (1.0 - 1e-4) * top ? 1 : 0;
+      if (at_top < std::max<std::size_t>(5, train.size() / 1000) || !(top > 0)) return std::nullopt;
       c = with(m, {id, {}, top});
       break;
     }

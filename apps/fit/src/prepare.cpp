@@ -117,6 +117,7 @@ FitData prepare(const interchange::Capture& capture, const PrepOptions& opt) {
     d.omega.push_back(omega[i]);
     d.alpha.push_back(alpha[i]);
     d.torque.push_back(torque[i]);
+    d.torque_recorded.push_back(c.torque[i]);
   }
   if (d.size() < kMinSamples) {
     throw FitDataError("only " + std::to_string(d.size()) +

@@ -45,6 +45,9 @@ struct FitData {
   std::vector<double> omega;  // rad/s
   std::vector<double> alpha;  // rad/s²
   std::vector<double> torque; // N·m
+  // The torque as recorded, before the low-pass (empty when not kept): a
+  // sensor's clipping is a flat top here and ringing after the filter.
+  std::vector<double> torque_recorded;  // N·m
   double rate_hz = 0.0;       // sample rate the preparation assumed
   bool resampled = false;     // irregular time stamps, interpolated onto 1/rate_hz
 
