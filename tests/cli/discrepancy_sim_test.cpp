@@ -94,6 +94,20 @@ TEST(DiscrepancySim, AClippedTorqueSensorIsNamedWithItsLimit) {
   EXPECT_LT(f.heldout_rmse_after_Nm, 0.8 * f.heldout_rmse_before_Nm);
 }
 
+TEST(DiscrepancySim, PlayBeforeTheDetentMechanismIsNamedWithItsWidth) {
+  // 3.2 mrad of play on moderate-detents, whose static friction (20 mN·m)
+  // outholds its detents (11 mN·m): after each reversal the mechanism
+  // stands while the knob crosses the play, and the sensor reads next to
+  // nothing. Discovery's mechanism must stand there too (the base fit's
+  // breakaway level), not snap ahead on the detent's pull.
+  const auto r = discover_with("backlash:width=0.0032");
+  ASSERT_FALSE(r.findings.empty()) << discovery::to_json(r);
+  const discovery::Finding& f = r.findings.front();
+  EXPECT_EQ(f.effect, discovery::EffectId::Backlash) << discovery::to_json(r);
+  EXPECT_NEAR(param(f, "width_rad"), 0.0032, 0.0008);
+  EXPECT_LT(f.heldout_rmse_after_Nm, 0.6 * f.heldout_rmse_before_Nm);
+}
+
 TEST(DiscrepancySim, AOncePerRevolutionTorqueOnAKnobWithoutDetentsIsNotCalledDetents) {
   // 2 mN·m once per revolution on the detent-free high-inertia knob: the base
   // detent search takes it for 1.6 "detents" per revolution, fewer than two

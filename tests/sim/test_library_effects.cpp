@@ -132,6 +132,35 @@ TEST(LibraryEffects, BacklashLeavesTheSensorEmptyWhileTheDriveCrossesThePlay) {
   EXPECT_GT(mid_stroke, 20000);
 }
 
+TEST(LibraryEffects, ADetentPullingThroughThePlayIsHeldBackByTheFarFace) {
+  // Turned steadily across the moderate-detents knob's detents: where a
+  // detent's downslope pulls the mechanism ahead (harder than its kinetic
+  // friction holds), it snaps across the 3.2 mrad play and presses the far
+  // face, and the knob holds it back. The sensor reads the detent's pull
+  // there as it does without play (Eq. 6 at the mechanism's angle, half the
+  // play ahead), not the nothing of a mechanism running free: it cannot
+  // leave the knob behind by more than the play.
+  const auto peak_assist = [](double width) {
+    PlantConfig c = test::quiet({});
+    c.knob = *presets::knob("moderate-detents");
+    c.knob.backlash = width;
+    Plant p(c);
+    test::PositionLoop loop;
+    const double dt = 1e-4, v = -2.0;  // rad/s, over 1.2 rad: two detent periods and more
+    double ref = 0.0, peak = 0.0;
+    for (int n = 0; n < 6000; ++n) {
+      ref += v * dt;
+      p.step(loop.command(p, ref, v, dt), dt);
+      if (n > 2000) peak = std::max(peak, p.state().coupling_torque);  // restraining: > 0 moving −
+      EXPECT_LE(std::abs(p.state().knob_angle - p.state().motor_angle), 0.01);
+    }
+    return peak;
+  };
+  const double without = peak_assist(0.0);
+  EXPECT_GT(without, 0.008);  // 11 mN·m detents less 2 mN·m of friction
+  EXPECT_NEAR(peak_assist(0.0032), without, 0.1 * without);
+}
+
 TEST(LibraryEffects, WithoutPlayTheSensorReadsFrictionRightAfterAReversal) {
   // The same drive without backlash: the torque changes sign within a few
   // hundredths of a milliradian of travel (the coupling's twist), so the

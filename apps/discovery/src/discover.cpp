@@ -277,6 +277,13 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
   m.base = base_fit.params;
   m.base_fitted = base_fit.fitted;
   m.stick_speed = slow;
+  if (base_fit.stick) {
+    m.stick_band = base_fit.stick->dv;
+    // One breakaway level both ways: behind a play the band's estimate is
+    // unreliable in one direction (the mechanism stands while the knob
+    // crosses the play), so the larger one stands for both.
+    m.breakaway = std::max(base_fit.stick->D_pos, base_fit.stick->D_neg);
+  }
   // A "detent" term under 1.5 cycles per revolution, or with fewer than two
   // periods inside the swept range, is a slow trend over position, not
   // detents: the base goes without it, and gravity or a spring must earn it

@@ -101,30 +101,36 @@ std::vector<RowInputs> row_inputs(const fit::FitData& d, std::span<const std::si
     knob_shift.resize(n);
     contact.resize(n);
     // The mechanism behind the play runs ahead of the drive where its
-    // position torques pull harder than its kinetic friction holds, at the
-    // speed where the two balance, until the far face stops it (as
-    // sim::Plant's massless mechanism does): a detent's downslope snaps it
-    // across the play. Position torques and friction from the model as it
-    // stands.
+    // position torques pull harder than its friction holds, at the speed
+    // where the pull and kinetic friction balance, until the far face stops
+    // it (as sim::Plant's massless mechanism does): a detent's downslope
+    // snaps it across the play. Standing (slower than the stick band), it is
+    // held up to the static level. Position torques and friction from the
+    // model as it stands.
     const Layout L = layout_of(m);
     const std::vector<double> p = m.flat();
     const auto& f = m.base;
-    const auto free_speed = [&](double phi) {
+    const auto free_speed = [&](double phi, bool standing) {
       RowInputs at_rest;
       at_rest.theta = phi;
+      at_rest.alpha = 0.0;
       const double pull = -extended_torque(L, p.data(), at_rest);
       const bool fwd = pull > 0.0;
-      const double hold = std::abs(fwd ? f[model::kC_vel_pos] : f[model::kC_vel_neg]);
+      const double kinetic = std::abs(fwd ? f[model::kC_vel_pos] : f[model::kC_vel_neg]);
+      const double hold = standing ? std::max(m.breakaway, kinetic) : kinetic;
       const double damping = std::abs(fwd ? f[model::kB_vel_pos] : f[model::kB_vel_neg]);
       const double excess = std::abs(pull) - hold;
       if (!(excess > 0.0)) return 0.0;
       const double v = damping > 0.0 ? excess / damping : 1e3;
       return fwd ? v : -v;
     };
+    bool standing = true;
     for (std::size_t i = 0; i < n; ++i) {
-      if (i > 0) play.knob += (d.t[i] - d.t[i - 1]) * free_speed(play.knob);
+      const double before = play.knob, dt = i > 0 ? d.t[i] - d.t[i - 1] : 0.0;
+      if (i > 0) play.knob += dt * free_speed(play.knob, standing);
       knob_shift[i] = play.update(d.theta[i]) - d.theta[i];
       contact[i] = play.contact ? 1 : 0;
+      if (dt > 0.0) standing = std::abs(play.knob - before) < m.stick_band * dt;
     }
   }
   if (const ActiveEffect* h = m.find(EffectId::Hysteresis)) {

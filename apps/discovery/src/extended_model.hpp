@@ -38,6 +38,10 @@ struct ExtendedModel {
   // static friction): a row whose model inputs are slower is not described
   // by the model (RowInputs::described), wherever the operators moved it.
   double stick_speed = 0.0;
+  // The base fit's Karnopp band (Eq. 7): a backlash mechanism standing
+  // (slower than stick_band) is held by static friction up to `breakaway`
+  // (N·m; 0 when the fit has no band: kinetic C± then).
+  double stick_band = 0.0, breakaway = 0.0;
 
   bool has(EffectId id) const;
   const ActiveEffect* find(EffectId id) const;
@@ -86,10 +90,11 @@ T extended_torque(const Layout& L, const T* p, const RowInputs& r) {
     if (L.effects[e].id == EffectId::Hysteresis) hysteresis = &L.effects[e];
     if (L.effects[e].id == EffectId::Saturation) saturation = &L.effects[e];
   }
-  T tau = offset;
+  // The knob's own inertia is felt inside a play too; the mechanism behind
+  // it (friction, position torques) only in contact.
+  T tau = offset + base.inertia.torque(T(r.alpha));
   if (r.contact) {
-    const T theta = T(r.theta + r.theta_shift), omega(r.omega), alpha(r.alpha);
-    tau += base.inertia.torque(alpha);
+    const T theta = T(r.theta + r.theta_shift), omega(r.omega);
     if (hysteresis) {
       // Coulomb as C·z (Dahl), viscous unchanged.
       const T c = r.z >= 0 ? base.friction.C_pos : base.friction.C_neg;

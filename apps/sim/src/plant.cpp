@@ -262,10 +262,11 @@ void Plant::step_knob(double motor_force, double h) {
   s.knob_velocity = wk;
   s.knob_angle += h * wk;
   s.coupling_torque = tau_c;
-  // The mechanism: with the knob while engaged, else on its own; the faces
-  // of the play bound it either way.
+  // The mechanism: with the knob while engaged (pushed by one face or held
+  // back by the other), else on its own; the faces of the play bound it
+  // either way.
   if (play) {
-    if (!engaged) play_.knob += h * v_free;
+    play_.knob += h * (engaged ? wk : v_free);
     play_.update(s.knob_angle);
     mech_velocity_ = (play_.knob - phi) / h;
   } else {
