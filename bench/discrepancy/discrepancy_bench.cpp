@@ -66,24 +66,24 @@ const Effect kEffects[] = {
     {"nonlinear_damping", false, [](double r) { return fmt("nonlinear_damping:c=%.3g,p=2", 0.5 * r); }},
     {"position_friction", false, [](double r) { return fmt("position_friction:depth=%.3g,P=0.2,phase=0.4", 3 * r); }},
     {"drift", false, [](double r) { return fmt("drift:rate=%.3g,t0=4", 0.8 * r); }},
+    // Stops at ±0.9 rad of the ±1 rad sweep: 6 r at the turn, nothing over 90 % of the travel.
+    {"endstop", false, [](double r) { return fmt("endstop:position=0.9,stiffness=%.3g", 60 * r); }},
 };
 
 // Operators (a delay, a clip, a play, presliding): their setting is no torque
 // amplitude, so each is sized by its signature on the clean capture, RMS 2 r
-// over the rows discovery analyses (sizing.hpp) — a 3 r sinusoid's. `quick`:
-// also in --quick (the ctest floor), for those named reliably there.
+// over the rows discovery analyses (sizing.hpp) — a 3 r sinusoid's.
 struct Operator {
   const char* id;
-  bool quick;
   double (*size)(const fit::FitData& clean, const sim::KnobParams& knob, double rms);
   const char* spec;  // printf format of the setting
 };
 
 const Operator kOperators[] = {
-    {"time_delay", false, bench::size_time_delay, "time_delay:delay=%.3g"},
-    {"saturation", false, bench::size_saturation, "saturation:limit=%.3g"},
-    {"hysteresis", false, bench::size_hysteresis, "hysteresis:presliding=%.3g"},
-    {"backlash", false, bench::size_backlash, "backlash:width=%.3g"},
+    {"time_delay", bench::size_time_delay, "time_delay:delay=%.3g"},
+    {"saturation", bench::size_saturation, "saturation:limit=%.3g"},
+    {"hysteresis", bench::size_hysteresis, "hysteresis:presliding=%.3g"},
+    {"backlash", bench::size_backlash, "backlash:width=%.3g"},
 };
 constexpr double kOperatorRms = 2.0;  // × r
 
@@ -176,7 +176,6 @@ int main(int argc, char** argv) {
           report(run_case({k, e.id, e.spec(r)}, static_cast<std::uint64_t>(seed)));
         }
         for (const Operator& e : kOperators) {
-          if (quick && !e.quick) continue;
           const double setting = e.size(clean_data, knob, kOperatorRms * r);
           report(run_case({k, e.id, fmt(e.spec, setting)}, static_cast<std::uint64_t>(seed)));
         }

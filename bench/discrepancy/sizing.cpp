@@ -90,7 +90,7 @@ double size_hysteresis(const fit::FitData& d, const sim::KnobParams& knob, doubl
     }
     return s;
   };
-  return solve(sig, analysed(d, knob), 1e-5, 0.01, target, true);
+  return solve(sig, analysed(d, knob), 1e-5, 0.03, target, true);
 }
 
 double size_backlash(const fit::FitData& d, const sim::KnobParams& knob, double target) {

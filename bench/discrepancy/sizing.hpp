@@ -7,7 +7,7 @@
 // the knob's stick band). That puts them on the same footing as the torque
 // effects, whose amplitudes are multiples of the clean residual r. Settings
 // stay within the range discovery searches (delay ≤ 5 ms, presliding angle
-// ≤ 10 mrad, backlash ≤ 16 mrad): past it the benchmark would test the grid's
+// ≤ 30 mrad, backlash ≤ 16 mrad): past it the benchmark would test the grid's
 // reach, not the naming; where the bound holds the signature falls short.
 #pragma once
 

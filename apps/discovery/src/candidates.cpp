@@ -258,7 +258,7 @@ std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& m,
     case EffectId::Backlash:
       return grid_search(id, {0.5e-3, 1e-3, 2e-3, 4e-3, 8e-3, 16e-3}, m, d, train);
     case EffectId::Hysteresis:
-      return grid_search(id, {1e-4, 3e-4, 1e-3, 3e-3, 1e-2}, m, d, train);
+      return grid_search(id, {1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2}, m, d, train);
     case EffectId::Compliance: {
       // Coupling stiffness k on a grid spanning the knob's ringing from
       // 30 Hz to 1 kHz (k = M·(2πf)²); stiffer than that is rigid here.
