@@ -80,7 +80,8 @@ SummaryText summary_text(const fit::FitData& data, const DiscrepancyResult& r,
   s.notes.push_back(
       "Forward view: the model driven by the measured torque over 20 ms windows begun from the "
       "measured angle and speed on the held-out rows (M·θ̈ = τ − the model's other terms); "
-      "forward θ RMS is the simulated − measured angle. – when the fitted inertia is not positive.");
+      "forward θ RMS is the simulated − measured angle. – when the fitted inertia is not "
+      "positive or the model runs away (a radian off within a window).");
   const std::string held = r.heldout_recording ? "another recording" : "odd time blocks";
   s.notes.push_back("RMS and BIC over the " + std::to_string(r.train_rows) +
                     " training rows, held-out RMS over the " + std::to_string(r.heldout_rows) +
