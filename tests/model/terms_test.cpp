@@ -60,6 +60,17 @@ TEST(CoulombViscous, IsDissipativeAndAsymmetric) {
   for (double w = -3.0; w <= 3.0; w += 0.25) EXPECT_GE(f.torque(w) * w, 0.0);
 }
 
+TEST(CoulombViscous, DahlFormTakesTheCoulombPartFromTheFrictionState) {
+  const CoulombViscous<double> f{1.5, 1.0, 2.0, 1.5};
+  // Fully turned over (z = ±1) it is the sliding law.
+  EXPECT_DOUBLE_EQ(f.torque_dahl(0.5, 1.0), f.torque(0.5));
+  EXPECT_DOUBLE_EQ(f.torque_dahl(-0.5, -1.0), f.torque(-0.5));
+  // Just after a reversal (moving back, z still +0.5): half of C_pos,
+  // against the new motion's viscous part.
+  EXPECT_DOUBLE_EQ(f.torque_dahl(-0.5, 0.5), 0.5 * 2.0 + 1.0 * -0.5);
+  EXPECT_DOUBLE_EQ(f.torque_dahl(0.0, -0.25), -0.25 * 1.5);
+}
+
 TEST(KarnoppStick, InsideBandHoldsUpToStaticLimits) {
   const CoulombViscous<double> sliding{0.01, 0.002, 0.012, 0.003};
   const KarnoppStick<double> stick{0.01, 0.15, 0.2};

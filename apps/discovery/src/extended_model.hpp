@@ -96,10 +96,7 @@ T extended_torque(const Layout& L, const T* p, const RowInputs& r) {
   if (r.contact) {
     const T theta = T(r.theta + r.theta_shift), omega(r.omega);
     if (hysteresis) {
-      // Coulomb as C·z (Dahl), viscous unchanged.
-      const T c = r.z >= 0 ? base.friction.C_pos : base.friction.C_neg;
-      const T b = omega > T(0) ? base.friction.B_pos : base.friction.B_neg;
-      tau += c * T(r.z) + b * omega;
+      tau += base.friction.torque_dahl(omega, T(r.z));
     } else {
       tau += base.friction.torque(omega);
     }

@@ -278,16 +278,12 @@ void Plant::step_knob(double motor_force, double h) {
   if (kp.presliding > 0.0) dahl_.update(h * mech_velocity_);
 }
 
-// Eq. 6's sliding law, or under presliding hysteresis the Coulomb part as C·z
-// (C_pos for z ≥ 0, C_neg below, as discovery's extended_torque) beside the
-// unchanged viscous part. Dahl is passive (storage C·θ_p·z²/2 grows by at
+// Eq. 6's sliding law, or under presliding hysteresis its Dahl form
+// (CoulombViscous::torque_dahl, the one discovery fits). Dahl is passive (storage C·θ_p·z²/2 grows by at
 // most τ·dθ), so friction stays dissipative over any path.
 double Plant::sliding_friction(double w) const {
   const model::CoulombViscous<double>& f = cfg_.knob.friction;
-  if (!(cfg_.knob.presliding > 0.0)) return f.torque(w);
-  const double z = dahl_.z;
-  const model::CoulombViscous<double> viscous{0.0, f.B_neg, 0.0, f.B_pos};
-  return (z >= 0.0 ? f.C_pos : f.C_neg) * z + viscous.torque(w);
+  return cfg_.knob.presliding > 0.0 ? f.torque_dahl(w, dahl_.z) : f.torque(w);
 }
 
 void Plant::sample() {

@@ -49,6 +49,15 @@ struct CoulombViscous {
     if (omega < T(0)) return -C_neg + B_neg * omega;
     return T(0);
   }
+  // Under presliding hysteresis (Dahl's state z ∈ [−1, 1], DahlFriction in
+  // effects.hpp): the Coulomb part as C·z (C_pos for z ≥ 0, C_neg below),
+  // the viscous part unchanged. The plant renders it, discovery fits it.
+  T torque_dahl(const T& omega, const T& z) const {
+    const T coulomb = (z >= T(0) ? C_pos : C_neg) * z;
+    if (omega > T(0)) return coulomb + B_pos * omega;
+    if (omega < T(0)) return coulomb + B_neg * omega;
+    return coulomb;
+  }
 };
 
 // Karnopp stick band (Eq. 7). Inside |ω| < dv the knob is taken as stuck:
