@@ -83,12 +83,7 @@ std::vector<RowInputs> row_inputs(const fit::FitData& d, std::span<const std::si
   std::vector<double> tau_rate;
   if (compliance) tau_rate = model::derivative(d.t, d.torque);
   auto at = [&](const std::vector<double>& v, std::size_t i) {
-    if (shift == 0.0) return v[i];
-    const double x = std::clamp(static_cast<double>(i) - shift, 0.0, static_cast<double>(n - 1));
-    const auto lo = static_cast<std::size_t>(x);
-    const std::size_t hi = std::min(lo + 1, n - 1);
-    const double f = x - static_cast<double>(lo);
-    return v[lo] + f * (v[hi] - v[lo]);
+    return shift == 0.0 ? v[i] : value_at(v, static_cast<double>(i) - shift);
   };
 
   // Operators with memory run over every sample in time order.
@@ -113,7 +108,6 @@ std::vector<RowInputs> row_inputs(const fit::FitData& d, std::span<const std::si
     const auto free_speed = [&](double phi, bool standing) {
       RowInputs at_rest;
       at_rest.theta = phi;
-      at_rest.alpha = 0.0;
       const double pull = -extended_torque(L, p.data(), at_rest);
       const bool fwd = pull > 0.0;
       const double kinetic = std::abs(fwd ? f[model::kC_vel_pos] : f[model::kC_vel_neg]);

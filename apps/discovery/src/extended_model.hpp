@@ -3,6 +3,7 @@
 // fit. Internal to knoblab_discovery.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <span>
 #include <string>
@@ -61,6 +62,15 @@ struct RowInputs {
   // delay or a coupling's twist can move a moving row's inputs into it.
   bool described = true;
 };
+
+// v at the fractional sample index x (linear between neighbours, clamped to
+// the ends): a channel read a delay's fraction of a sample off the grid.
+inline double value_at(const std::vector<double>& v, double x) {
+  x = std::clamp(x, 0.0, static_cast<double>(v.size() - 1));
+  const auto lo = static_cast<std::size_t>(x);
+  const std::size_t hi = std::min(lo + 1, v.size() - 1);
+  return v[lo] + (x - static_cast<double>(lo)) * (v[hi] - v[lo]);
+}
 
 // Rows of `d` (indices `rows`) with the operator settings of `m` applied.
 // The operators run over the whole recording in time order, whatever rows

@@ -29,12 +29,7 @@ ForwardError forward_error(const ExtendedModel& m, const fit::FitData& d,
   // the channel shows δ later.
   const ActiveEffect* delay = m.find(EffectId::TimeDelay);
   const double shift = delay ? delay->setting * d.rate_hz : 0.0;  // samples
-  const auto torque_at = [&](std::size_t i) {
-    const double x = std::clamp(static_cast<double>(i) + shift, 0.0, static_cast<double>(d.size() - 1));
-    const auto lo = static_cast<std::size_t>(x);
-    const std::size_t hi = std::min(lo + 1, d.size() - 1);
-    return d.torque[lo] + (x - static_cast<double>(lo)) * (d.torque[hi] - d.torque[lo]);
-  };
+  const auto torque_at = [&](std::size_t i) { return value_at(d.torque, static_cast<double>(i) + shift); };
 
   double ss_theta = 0.0, ss_omega = 0.0;
   std::size_t count = 0;
