@@ -17,6 +17,7 @@
 #include "knoblab/hapticd/calibration_controller.hpp"
 #include "knoblab/hapticd/core.hpp"
 #include "knoblab/hapticd/daemon.hpp"
+#include "shared_host.hpp"
 #include "knoblab/hal/memory_lines.hpp"
 #include "knoblab/store/store.hpp"
 #include "knoblab/sim/presets.hpp"
@@ -275,9 +276,10 @@ TEST(CalibrationDaemon, StartCalibrationRunsRecordsAndPublishesItsResultOnce) {
     cfg.core.rate_hz = 10000.0;
     cfg.core.calibration = daq->calibration();
     cfg.db = dir / "lab.sqlite";
-    cfg.loop.lock_memory = false;
+    shared_host::configure(cfg);
     Daemon d(cfg, std::move(daq), std::make_unique<hal::MemoryLines>(false));
-    std::thread loop([&] { d.run(); });
+    rt::LoopResult timing;
+    std::thread loop([&] { timing = d.run(); });
     EXPECT_FALSE(d.last_calibration());
     CalibrationConfig cc;
     cc.kind = CalibrationKind::Spatial;
@@ -308,6 +310,7 @@ TEST(CalibrationDaemon, StartCalibrationRunsRecordsAndPublishesItsResultOnce) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
     d.stop();
     loop.join();
+    shared_host::report_timing("StartCalibration", timing);
   }
   store::Store s = store::Store::open(dir / "lab.sqlite");
   const auto caps = s.list_captures();

@@ -90,7 +90,9 @@ TEST_F(PollerTest, BiometricsArriveAt32HzExactlyOnce) {
     if (i > 0) {
       EXPECT_EQ(all[i].counter, all[i - 1].counter + 1);
       EXPECT_NEAR(all[i].box_time_ms - all[i - 1].box_time_ms, 31.25, 1.0);  // the box's 32 Hz clock
+      EXPECT_GT(all[i].taken, all[i - 1].taken);
     }
+    EXPECT_LE(all[i].taken, all[i].received);  // taken by the box before we read it
     EXPECT_GT(all[i].skin_conductance, 0.3e-6);  // a few µS, SI units
     EXPECT_LT(all[i].skin_conductance, 30e-6);
     EXPECT_LT(std::abs(all[i].emg_corrugator), 1e-3);  // µV-scale volts

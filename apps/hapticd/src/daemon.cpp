@@ -70,7 +70,7 @@ Daemon::Daemon(DaemonConfig cfg, std::unique_ptr<capture::Daq> daq, std::unique_
       store::BiometricSample s;
       s.seq = static_cast<std::int64_t>(b.counter);
       // Steady clock = CLOCK_MONOTONIC, the loop's clock; the recorder rebases it.
-      s.t = std::chrono::duration<double>(b.received.time_since_epoch()).count();
+      s.t = std::chrono::duration<double>(b.taken.time_since_epoch()).count();
       s.emg_corrugator = b.emg_corrugator;
       s.emg_depressor = b.emg_depressor;
       s.skin_conductance = b.skin_conductance;

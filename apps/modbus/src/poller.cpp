@@ -250,9 +250,11 @@ void Poller::poll_biometrics() {
   if (snapshot->rate_hz > 0) bio_rate_hz_.store(snapshot->rate_hz);
 
   const SampleSequencer::Batch batch = sequencer_.accept(*snapshot);
+  if (batch.count > 0) box_clock_.observe(batch.samples[batch.count - 1].box_time_ms, now);
   for (std::size_t i = 0; i < batch.count; ++i) {
     BiometricSample sample = batch.samples[i];
     sample.received = now;
+    sample.taken = box_clock_.to_host(sample.box_time_ms);
     if (!config_.on_sample) continue;
     try {
       config_.on_sample(sample);

@@ -31,8 +31,11 @@ struct BiometricSample {
   double emg_depressor = 0.0;     // V, signed
   double skin_conductance = 0.0;  // S
   std::uint16_t flags = 0;        // bio::status bits at this sample
-  // When the poller received it (steady clock): for aligning with the loop.
+  // When the poller received it (steady clock).
   std::chrono::steady_clock::time_point received{};
+  // When the box took it, on the same clock (box_time_ms mapped by BoxClock):
+  // for aligning with the loop. Unlike `received`, a late poll does not move it.
+  std::chrono::steady_clock::time_point taken{};
 };
 
 // One read of the biometrics block: header plus the ring, as the box holds it.

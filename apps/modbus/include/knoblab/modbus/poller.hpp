@@ -26,6 +26,7 @@
 #include "knoblab/modbus/codec.hpp"
 #include "knoblab/modbus/connection.hpp"
 #include "knoblab/modbus/endpoint.hpp"
+#include "knoblab/modbus/box_clock.hpp"
 #include "knoblab/modbus/sample_sequencer.hpp"
 #include "knoblab/modbus/status_bits.hpp"
 
@@ -137,6 +138,7 @@ class Poller {
 
   // Poller-thread-only state.
   SampleSequencer sequencer_;
+  BoxClock box_clock_;
   std::optional<std::uint16_t> last_heartbeat_;
   std::optional<std::uint32_t> last_counter_;
   bool commanded_enabled_ = false;
