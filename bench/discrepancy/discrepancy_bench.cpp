@@ -3,13 +3,15 @@
 // knobs (README.md). Prints every case, the confusion table, the false-alarm
 // rate, the held-out gains and the analysis times.
 //
-//   knoblab-discrepancy-bench [--quick] [--seeds N] [--json FILE] [--check]
+//   knoblab-discrepancy-bench [--quick] [--seeds N] [--effect ID] [--json FILE] [--check]
 //
+// --effect runs only that effect's cases (and the clean knobs that size them).
 // --check exits 2 when a floor of issue 5's acceptance 1 is missed (named
 // right ≥ 90 %, clean cases without finding ≥ 90 %, held-out RMS down ≥ 20 %
 // whenever a finding is reported); it never gates on time.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -101,18 +103,27 @@ struct Outcome {
   std::string json;
 };
 
-// `prepared`: where to leave the capture as the analysis saw it.
-Outcome run_case(const Case& c, std::uint64_t seed, fit::FitData* prepared = nullptr) {
+cli::SimulationResult simulated(const std::string& knob, const std::string& effects, std::uint64_t seed) {
   cli::SimulationRequest req;
-  req.knob_name = c.knob;
-  req.knob = *sim::presets::knob(c.knob);
+  req.knob_name = knob;
+  req.knob = *sim::presets::knob(knob);
   req.seconds = 8.0;
   req.rate_hz = 5000.0;
   req.seed = seed;
-  for (const sim::EffectSpec& e : sim::parse_effect_specs(c.effects)) {
+  for (const sim::EffectSpec& e : sim::parse_effect_specs(effects)) {
     if (!sim::apply_to_knob(e, req.knob)) req.effects.push_back(e);
   }
-  const cli::SimulationResult s = cli::simulate(req, nullptr);
+  return cli::simulate(req, nullptr);
+}
+
+// A case's capture as discovery sees it.
+fit::FitData prepared_capture(const std::string& knob, const std::string& effects, std::uint64_t seed) {
+  return fit::prepare(simulated(knob, effects, seed).capture);
+}
+
+// `prepared`: where to leave the capture as the analysis saw it.
+Outcome run_case(const Case& c, std::uint64_t seed, fit::FitData* prepared = nullptr) {
+  const cli::SimulationResult s = simulated(c.knob, c.effects, seed);
   Outcome o;
   o.c = c;
   o.seed = seed;
@@ -138,15 +149,16 @@ Outcome run_case(const Case& c, std::uint64_t seed, fit::FitData* prepared = nul
 int main(int argc, char** argv) {
   bool quick = false, check = false;
   int seeds = 1;
-  std::string json_path;
+  std::string json_path, only;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--quick") quick = true;
     else if (a == "--check") check = true;
     else if (a == "--seeds" && i + 1 < argc) seeds = std::max(1, std::atoi(argv[++i]));
     else if (a == "--json" && i + 1 < argc) json_path = argv[++i];
+    else if (a == "--effect" && i + 1 < argc) only = argv[++i];
     else {
-      std::fprintf(stderr, "usage: knoblab-discrepancy-bench [--quick] [--seeds N] [--json FILE] [--check]\n");
+      std::fprintf(stderr, "usage: knoblab-discrepancy-bench [--quick] [--seeds N] [--effect ID] [--json FILE] [--check]\n");
       return 1;
     }
   }
@@ -172,12 +184,26 @@ int main(int argc, char** argv) {
         const sim::KnobParams knob = *sim::presets::knob(k);
         const bool detents = knob.detents.A != 0.0;
         for (const Effect& e : kEffects) {
-          if (e.needs_detents && !detents) continue;
+          if ((e.needs_detents && !detents) || (!only.empty() && only != e.id)) continue;
           report(run_case({k, e.id, e.spec(r)}, static_cast<std::uint64_t>(seed)));
         }
         for (const Operator& e : kOperators) {
+          if (!only.empty() && only != e.id) continue;
           const double setting = e.size(clean_data, knob, kOperatorRms * r);
           report(run_case({k, e.id, fmt(e.spec, setting)}, static_cast<std::uint64_t>(seed)));
+        }
+        if (only.empty() || only == "compliance") {
+          const auto excess = [&](double stiffness) {
+            discovery::DiscrepancyOptions base_only;
+            base_only.max_findings = 0;
+            const fit::FitData d =
+                prepared_capture(k, fmt("compliance:stiffness=%.3g", stiffness), static_cast<std::uint64_t>(seed));
+            const double b = discovery::discover(d, base_only).base.heldout_rmse_Nm;
+            return std::sqrt(std::max(b * b - r * r, 0.0));
+          };
+          const double stiffness = bench::size_compliance(excess, kOperatorRms * r);
+          report(run_case({k, "compliance", fmt("compliance:stiffness=%.3g", stiffness)},
+                          static_cast<std::uint64_t>(seed)));
         }
       }
     }

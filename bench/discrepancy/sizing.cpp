@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "knoblab/model/effects.hpp"
+#include "knoblab/model/filters.hpp"
+#include "knoblab/sim/coupling.hpp"
 
 namespace knoblab::bench {
 
@@ -34,10 +36,10 @@ double rms(const std::vector<double>& signature, const std::vector<std::size_t>&
 // The setting in [lo, hi] (geometric bisection) where the signature's RMS,
 // monotone in it, reaches `target`; an end when it does not get there.
 double solve(const std::function<std::vector<double>(double)>& signature, const std::vector<std::size_t>& rows,
-             double lo, double hi, double target, bool increasing) {
+             double lo, double hi, double target, bool increasing, int halvings = 40) {
   const auto above = [&](double s) { return (rms(signature(s), rows) >= target) == increasing; };
   if (increasing ? !above(hi) : above(lo)) return increasing ? hi : lo;
-  for (int it = 0; it < 40; ++it) {
+  for (int it = 0; it < halvings; ++it) {
     const double mid = std::sqrt(lo * hi);
     (above(mid) ? hi : lo) = mid;
   }
@@ -108,6 +110,16 @@ double size_backlash(const fit::FitData& d, const sim::KnobParams& knob, double 
     return s;
   };
   return solve(sig, analysed(d, knob), 1e-5, 0.016, target, true);
+}
+
+double size_compliance(const std::function<double(double)>& excess, double target) {
+  double lo = kMinCouplingStiffness, hi = sim::CouplingParams{}.stiffness;
+  if (excess(lo) < target) return lo;
+  for (int it = 0; it < 8; ++it) {  // each step a capture and a fit: ≈ 1 % of the log range
+    const double mid = std::sqrt(lo * hi);
+    (excess(mid) >= target ? lo : hi) = mid;
+  }
+  return lo;
 }
 
 }  // namespace knoblab::bench

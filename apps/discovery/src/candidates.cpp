@@ -126,6 +126,33 @@ std::optional<ExtendedModel> grid_search(EffectId id, const std::vector<double>&
   return best;
 }
 
+// Compliance has two settings: the coupling's stiffness k and its lag c/k.
+// k on a grid spanning the knob's ringing from 30 Hz to 1 kHz (k = M·ω²;
+// stiffer than that is rigid here) at a middling damping ratio ζ = 0.5
+// (c/k = 2ζ/ω); then ζ at the best k from undamped to overdamped; then k
+// refined at that ζ; then the best fitted fully.
+std::optional<ExtendedModel> compliance_search(const ExtendedModel& m, const fit::FitData& d,
+                                               std::span<const std::size_t> train) {
+  const double M = std::abs(m.base[model::kM_acc]);
+  if (!(M > 0.0)) return std::nullopt;
+  std::optional<ExtendedModel> best;
+  double best_rmse = 0.0, best_k = 0.0, best_zeta = 0.5;
+  const auto try_setting = [&](double k, double zeta) {
+    ActiveEffect e{EffectId::Compliance, {}, k};
+    e.lag_s = 2.0 * zeta / std::sqrt(k / M);
+    ExtendedModel c = with(m, std::move(e));
+    const FitReport r = fit_extended(c, d, train, 6);
+    if (!best || r.rmse < best_rmse) best = std::move(c), best_rmse = r.rmse, best_k = k, best_zeta = zeta;
+  };
+  for (const double f : {30.0, 60.0, 120.0, 250.0, 500.0, 1000.0}) try_setting(M * std::pow(2 * kPi * f, 2), 0.5);
+  const double k = best_k;
+  for (const double zeta : {0.0, 0.2, 1.0, 2.0}) try_setting(k, zeta);
+  const double zeta = best_zeta;
+  for (const double f : {0.7, 0.85, 1.15, 1.3}) try_setting(k * f, zeta);
+  fit_extended(*best, d, train, 40);
+  return best;
+}
+
 double base_period(const ExtendedModel& m) { return std::abs(m.base[model::kP_pos]); }
 bool base_has_detents(const ExtendedModel& m) {
   return m.base_fitted.size() > model::kA_pos && m.base_fitted[model::kA_pos];
@@ -259,15 +286,7 @@ std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& m,
       return grid_search(id, {0.5e-3, 1e-3, 2e-3, 4e-3, 8e-3, 16e-3}, m, d, train);
     case EffectId::Hysteresis:
       return grid_search(id, {1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2}, m, d, train);
-    case EffectId::Compliance: {
-      // Coupling stiffness k on a grid spanning the knob's ringing from
-      // 30 Hz to 1 kHz (k = M·(2πf)²); stiffer than that is rigid here.
-      const double M = std::abs(m.base[model::kM_acc]);
-      if (!(M > 0.0)) return std::nullopt;
-      std::vector<double> ks;
-      for (const double f : {30.0, 60.0, 120.0, 250.0, 500.0, 1000.0}) ks.push_back(M * std::pow(2 * kPi * f, 2));
-      return grid_search(id, ks, m, d, train);
-    }
+    case EffectId::Compliance: return compliance_search(m, d, train);
     case EffectId::Endstop: {
       // A stop engages only at the extremes of the travel: its position on a
       // grid of |θ| quantiles, its stiffness from the residual beyond it.
@@ -347,9 +366,13 @@ Params report_params(const ActiveEffect& e, const ExtendedModel& m) {
     case EffectId::Hysteresis: return {{"presliding_angle_rad", e.setting}};
     case EffectId::Endstop: return {{"position_rad", e.setting}, {"stiffness_Nm_per_rad", q[0]}};
     case EffectId::Compliance: {
+      // The ringing against the knob's inertia as this model fits it.
       const double M = std::abs(m.base[model::kM_acc]);
+      const double wn = M > 0 ? std::sqrt(e.setting / M) : 0.0;
       return {{"stiffness_Nm_per_rad", e.setting},
-              {"frequency_hz", M > 0 ? std::sqrt(e.setting / M) / (2 * kPi) : 0.0}};
+              {"damping_Nm_s_per_rad", e.lag_s * e.setting},
+              {"frequency_hz", wn / (2 * kPi)},
+              {"zeta", e.lag_s * wn / 2.0}};
     }
     default: return {};
   }
@@ -464,9 +487,10 @@ Explanation explain(const ActiveEffect& e, const ExtendedModel& m, double before
                      v("position_rad") * deg, v("stiffness_Nm_per_rad") * 1e3) + gain};
     case EffectId::Compliance:
       return {"after reversals and breakaways (ringing)",
-              format("The knob lags the motor by the coupling's twist: %.3g N·m/rad, ringing near "
-                     "%.3g Hz with the knob's inertia (compliance between actuator and knob).",
-                     v("stiffness_Nm_per_rad"), v("frequency_hz")) + gain};
+              format("The knob lags the motor by the coupling's twist: %.3g N·m/rad (damping ratio "
+                     "%.2g), ringing near %.3g Hz with the knob's inertia (compliance between "
+                     "actuator and knob).",
+                     v("stiffness_Nm_per_rad"), v("zeta"), v("frequency_hz")) + gain};
     default: return {"", std::string(effect_name(e.id)) + "." + gain};
   }
 }

@@ -76,12 +76,25 @@ std::vector<RowInputs> row_inputs(const fit::FitData& d, std::span<const std::si
   const ActiveEffect* delay = m.find(EffectId::TimeDelay);
   const double shift = delay ? delay->setting * d.rate_hz : 0.0;  // samples
   // Compliance: the encoder is on the motor; the knob lags it by the
-  // coupling's twist τ/k, so the knob's angle and speed are the motor's less
-  // the measured torque (and its rate) over k. α is left as it is: the
-  // accelerometer already rides on the knob side.
+  // coupling's twist e, which the measured torque sets through the coupling's
+  // spring and damper, k·e + c·ė = τ: a first-order lag of τ/k with time
+  // constant c/k (exact for a torque held over each sample). The knob's angle
+  // and speed are the motor's less e and ė. α too when it is the encoder's
+  // derivative; an accelerometer already rides on the knob side.
   const ActiveEffect* compliance = m.find(EffectId::Compliance);
-  std::vector<double> tau_rate;
-  if (compliance) tau_rate = model::derivative(d.t, d.torque);
+  std::vector<double> twist, twist_rate, twist_acc;
+  if (compliance) {
+    const double k = compliance->setting, lag = compliance->lag_s;
+    twist.resize(n);
+    double e = d.torque[0] / k;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double target = d.torque[i] / k;
+      e = lag > 0.0 && i > 0 ? target + (e - target) * std::exp(-(d.t[i] - d.t[i - 1]) / lag) : target;
+      twist[i] = e;
+    }
+    twist_rate = model::derivative(d.t, twist);
+    if (d.alpha_from_encoder) twist_acc = model::derivative(d.t, twist_rate);
+  }
   auto at = [&](const std::vector<double>& v, std::size_t i) {
     return shift == 0.0 ? v[i] : value_at(v, static_cast<double>(i) - shift);
   };
@@ -145,9 +158,9 @@ std::vector<RowInputs> row_inputs(const fit::FitData& d, std::span<const std::si
     r.omega = at(d.omega, i);
     r.alpha = at(d.alpha, i);
     if (compliance) {
-      const double k = compliance->setting;
-      r.theta -= d.torque[i] / k;
-      r.omega -= tau_rate[i] / k;
+      r.theta -= twist[i];
+      r.omega -= twist_rate[i];
+      if (!twist_acc.empty()) r.alpha -= twist_acc[i];
     }
     if (!knob_shift.empty()) r.theta_shift = knob_shift[i], r.contact = contact[i] != 0;
     if (!z.empty()) r.z = z[i];

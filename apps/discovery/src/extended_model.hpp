@@ -26,6 +26,9 @@ struct ActiveEffect {
   EffectId id{};
   std::vector<double> params;
   double setting = 0.0;
+  // compliance only: the coupling's damping over its stiffness, c/k (s) —
+  // the twist follows τ/k through a first-order lag of this time constant.
+  double lag_s = 0.0;
 };
 
 // Names of an effect's continuous parameters, in order, as reported.

@@ -110,6 +110,7 @@ FitData prepare(const interchange::Capture& capture, const PrepOptions& opt) {
   FitData d;
   d.rate_hz = fs;
   d.resampled = resampled;
+  d.alpha_from_encoder = encoder;
   for (std::size_t i = 0; i < c.size(); ++i) {
     if (!c.flags.empty() && (c.flags[i] & opt.exclude_flags)) continue;
     d.t.push_back(c.t[i]);

@@ -50,6 +50,7 @@ struct FitData {
   std::vector<double> torque_recorded;  // N·m
   double rate_hz = 0.0;       // sample rate the preparation assumed
   bool resampled = false;     // irregular time stamps, interpolated onto 1/rate_hz
+  bool alpha_from_encoder = false;  // α is the encoder's second derivative, not an accelerometer's
 
   std::size_t size() const { return t.size(); }
   model::Kinematics<double> kinematics(std::size_t i) const {
