@@ -68,6 +68,11 @@ Layout layout_of(const ExtendedModel& m) {
   return L;
 }
 
+// A fraction of the stick speed (2 % of the brisk speed): the encoder's
+// motion can be that slow at a reversal with the knob still sliding, but a
+// knob whose twist-corrected speed stays under it stands.
+constexpr double kStandingFraction = 0.3;
+
 std::vector<RowInputs> row_inputs(const fit::FitData& d, std::span<const std::size_t> rows,
                                   const ExtendedModel& m) {
   const std::size_t n = d.size();
@@ -82,7 +87,7 @@ std::vector<RowInputs> row_inputs(const fit::FitData& d, std::span<const std::si
   // and speed are the motor's less e and ė. α too when it is the encoder's
   // derivative; an accelerometer already rides on the knob side.
   const ActiveEffect* compliance = m.find(EffectId::Compliance);
-  std::vector<double> twist, twist_rate, twist_acc;
+  std::vector<double> twist, twist_rate, twist_acc, wound;
   if (compliance) {
     const double k = compliance->setting, lag = compliance->lag_s;
     twist.resize(n);
@@ -94,6 +99,25 @@ std::vector<RowInputs> row_inputs(const fit::FitData& d, std::span<const std::si
     }
     twist_rate = model::derivative(d.t, twist);
     if (d.alpha_from_encoder) twist_acc = model::derivative(d.t, twist_rate);
+    // While the knob stands the motor winds the coupling: from the run's
+    // first sample s on, the torque is
+    //   τ(s) + k·(θ_m − θ_m(s)) + c·(ω_m − ω_m(s)),
+    // a prediction from the motor's motion alone that a rigid model, sliding
+    // there by the encoder, cannot make. Between standing and the stick
+    // speed the knob creeps: neither prediction holds, the row is not
+    // described.
+    const double still = std::max(m.stick_band, kStandingFraction * m.stick_speed);
+    wound.assign(n, std::numeric_limits<double>::quiet_NaN());
+    std::size_t s = 0;
+    bool standing = false;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (std::abs(d.omega[i] - twist_rate[i]) >= still) {
+        standing = false;
+        continue;
+      }
+      if (!standing) s = i, standing = true;
+      wound[i] = d.torque[s] + k * (d.theta[i] - d.theta[s]) + lag * k * (d.omega[i] - d.omega[s]);
+    }
   }
   auto at = [&](const std::vector<double>& v, std::size_t i) {
     return shift == 0.0 ? v[i] : value_at(v, static_cast<double>(i) - shift);
@@ -161,6 +185,7 @@ std::vector<RowInputs> row_inputs(const fit::FitData& d, std::span<const std::si
       r.theta -= twist[i];
       r.omega -= twist_rate[i];
       if (!twist_acc.empty()) r.alpha -= twist_acc[i];
+      r.wound = wound[i];
     }
     if (!knob_shift.empty()) r.theta_shift = knob_shift[i], r.contact = contact[i] != 0;
     if (!z.empty()) r.z = z[i];
@@ -260,8 +285,9 @@ std::vector<double> residuals(const ExtendedModel& m, const fit::FitData& d,
   const std::vector<RowInputs> in = row_inputs(d, rows, m);
   std::vector<double> r(rows.size());
   for (std::size_t j = 0; j < rows.size(); ++j) {
-    r[j] = in[j].described ? d.torque[rows[j]] - extended_torque(L, p.data(), in[j])
-                           : std::numeric_limits<double>::quiet_NaN();
+    r[j] = in[j].described          ? d.torque[rows[j]] - extended_torque(L, p.data(), in[j])
+           : std::isnan(in[j].wound) ? std::numeric_limits<double>::quiet_NaN()
+                                     : d.torque[rows[j]] - in[j].wound;
   }
   return r;
 }

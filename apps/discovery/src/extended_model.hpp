@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -61,6 +62,9 @@ struct RowInputs {
   double theta_shift = 0.0;  // backlash: knob − drive
   bool contact = true;       // backlash: the drive moves the knob
   double z = 0.0;            // hysteresis: friction state, −1 … 1
+  // compliance: the coupling torque the motor has wound up while the knob
+  // stands (row_inputs); NaN while it moves. Predicts a row not `described`.
+  double wound = std::numeric_limits<double>::quiet_NaN();
   // The inputs are outside the stick band (ExtendedModel::stick_speed): a
   // delay or a coupling's twist can move a moving row's inputs into it.
   bool described = true;
@@ -179,7 +183,8 @@ FitReport fit_extended(ExtendedModel& m, const fit::FitData& d, std::span<const 
                        int max_iterations = 50);
 
 // Residuals (measured − model) at the rows; NaN where the model does not
-// describe the row (RowInputs::described).
+// describe the row (RowInputs::described) and, under compliance, the knob
+// does not stand either (RowInputs::wound).
 std::vector<double> residuals(const ExtendedModel& m, const fit::FitData& d,
                               std::span<const std::size_t> rows);
 
