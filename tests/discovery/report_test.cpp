@@ -5,7 +5,6 @@
 //
 // KNOBLAB_REPORT_EXAMPLE=dir keeps the example report in `dir` to look at.
 #include <gtest/gtest.h>
-#include <png.h>
 
 #include <array>
 #include <cmath>
@@ -19,6 +18,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "png_image.hpp"
 #include "effect_data.hpp"
 #include "knoblab/discovery/report.hpp"
 #include "knoblab/model/terms.hpp"
@@ -79,30 +79,8 @@ std::string read_bytes(const fs::path& file) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-struct Image {
-  std::uint32_t width = 0, height = 0;
-  std::vector<std::uint8_t> rgb;
-  std::array<int, 3> at(std::uint32_t x, std::uint32_t y) const {
-    const std::size_t i = 3 * (static_cast<std::size_t>(y) * width + x);
-    return {rgb[i], rgb[i + 1], rgb[i + 2]};
-  }
-};
-
-Image decode(const fs::path& file) {
-  png_image img{};
-  img.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&img, file.c_str()))
-    throw std::runtime_error("cannot read " + file.string());
-  img.format = PNG_FORMAT_RGB;
-  Image out;
-  out.width = img.width;
-  out.height = img.height;
-  out.rgb.resize(PNG_IMAGE_SIZE(img));
-  png_color white{255, 255, 255};
-  if (!png_image_finish_read(&img, &white, out.rgb.data(), 0, nullptr))
-    throw std::runtime_error("cannot decode " + file.string());
-  return out;
-}
+using knoblab::testing::Image;
+using knoblab::testing::decode_png;
 
 // The held-out rows' blue (31, 119, 180), with antialiasing slack. (The
 // training rows' grey is also the grey of antialiased text.)
@@ -146,7 +124,7 @@ TEST_F(DiscrepancyReport, WritesEveryFileAtTheRequestedSize) {
     const std::string bytes = read_bytes(f);
     EXPECT_GT(bytes.size(), 500u) << f;
     if (f.extension() == ".png") {
-      const Image im = decode(f);
+      const Image im = decode_png(f);
       EXPECT_EQ(im.width, 1000u) << f;
       EXPECT_EQ(im.height, 700u) << f;
     } else if (f.extension() == ".svg") {
@@ -168,7 +146,7 @@ TEST_F(DiscrepancyReport, AfterResidualIsDrawnNarrowerWhereTheEffectWasFound) {
   const Case& c = with_cogging();
   write_discrepancy_report(dir_, c.data, c.r);
   for (const char* name : {"residual_position.png", "residual_time.png"}) {
-    const Image im = decode(dir_ / name);
+    const Image im = decode_png(dir_ / name);
     const double before = cloud_height(im, 0, im.height / 2);
     const double after = cloud_height(im, im.height / 2, im.height);
     EXPECT_GT(after, 0.0) << name;
@@ -176,7 +154,7 @@ TEST_F(DiscrepancyReport, AfterResidualIsDrawnNarrowerWhereTheEffectWasFound) {
   }
   // Without a finding both panels are the same residual.
   write_discrepancy_report(dir_ / "clean", clean().data, clean().r);
-  const Image im = decode(dir_ / "clean" / "residual_position.png");
+  const Image im = decode_png(dir_ / "clean" / "residual_position.png");
   const double before = cloud_height(im, 0, im.height / 2);
   const double after = cloud_height(im, im.height / 2, im.height);
   EXPECT_NEAR(after, before, 0.01 * before);

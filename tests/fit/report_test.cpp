@@ -5,7 +5,6 @@
 // KNOBLAB_REPORT_EXAMPLE=dir keeps one example report in `dir` for a person
 // to look at.
 #include <gtest/gtest.h>
-#include <png.h>
 
 #include <algorithm>
 #include <array>
@@ -24,6 +23,7 @@
 #include <thread>
 #include <vector>
 
+#include "png_image.hpp"
 #include "knoblab/fit/report.hpp"
 
 namespace knoblab::fit {
@@ -129,30 +129,8 @@ std::pair<std::uint32_t, std::uint32_t> png_size(const std::string& png) {
   return {be32(png, 16), be32(png, 20)};
 }
 
-struct Image {
-  std::uint32_t width = 0, height = 0;
-  std::vector<std::uint8_t> rgb;  // row-major, 3 bytes a pixel, on white
-  std::array<int, 3> at(std::uint32_t x, std::uint32_t y) const {
-    const std::size_t i = 3 * (static_cast<std::size_t>(y) * width + x);
-    return {rgb[i], rgb[i + 1], rgb[i + 2]};
-  }
-};
-
-Image decode(const fs::path& file) {
-  png_image img{};
-  img.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&img, file.c_str()))
-    throw std::runtime_error("cannot read " + file.string());
-  img.format = PNG_FORMAT_RGB;
-  Image out;
-  out.width = img.width;
-  out.height = img.height;
-  out.rgb.resize(PNG_IMAGE_SIZE(img));
-  png_color white{255, 255, 255};
-  if (!png_image_finish_read(&img, &white, out.rgb.data(), 0, nullptr))
-    throw std::runtime_error("cannot decode " + file.string());
-  return out;
-}
+using knoblab::testing::Image;
+using knoblab::testing::decode_png;
 
 bool dark(const std::array<int, 3>& c) { return c[0] < 100 && c[1] < 100 && c[2] < 100; }
 // The raw clouds' light gray (190, 190, 190), with some antialiasing slack.
@@ -213,7 +191,7 @@ TEST_F(ReportTest, PlotsAreWhiteWithBlackAxesAndAGrayCloud) {
   const Case c = make_case();
   write_report(c.r, c.d, c.p, dir_);
   for (const char* name : {"torque_position.png", "torque_velocity.png", "torque_time.png"}) {
-    const Image im = decode(dir_ / name);
+    const Image im = decode_png(dir_ / name);
     ASSERT_EQ(im.width, 1200u);
     ASSERT_EQ(im.height, 900u);
     // White background.
@@ -240,8 +218,8 @@ TEST_F(ReportTest, RawCloudsAreThinnedToMaxPoints) {
   few.max_points = 100;
   write_report(c.r, c.d, c.p, dir_ / "few", few);
   write_report(c.r, c.d, c.p, dir_ / "all");
-  const std::size_t gray_few = count(decode(dir_ / "few" / "torque_time.png"), cloud_gray);
-  const std::size_t gray_all = count(decode(dir_ / "all" / "torque_time.png"), cloud_gray);
+  const std::size_t gray_few = count(decode_png(dir_ / "few" / "torque_time.png"), cloud_gray);
+  const std::size_t gray_all = count(decode_png(dir_ / "all" / "torque_time.png"), cloud_gray);
   EXPECT_LT(gray_few * 5, gray_all);
 }
 
@@ -278,8 +256,8 @@ TEST_F(ReportTest, BandsAreShadedWhereTheyCanBeSeen) {
   for (std::size_t i = 0; i < spiky.d.size(); i += 33) spiky.d.torque[i] += 40e-3;
   write_report(spiky.r, spiky.d, spiky.p, dir_ / "spiky");
   for (const char* name : {"torque_position.png", "torque_velocity.png", "torque_time.png"}) {
-    const Image clean = decode(dir_ / "clean" / name);
-    const Image with_spikes = decode(dir_ / "spiky" / name);
+    const Image clean = decode_png(dir_ / "clean" / name);
+    const Image with_spikes = decode_png(dir_ / "spiky" / name);
     const std::size_t page = std::size_t{clean.width} * clean.height;
     EXPECT_GT(count(clean, curve_fill), page / 2000) << name;
     EXPECT_GT(count(clean, obs_fill), page / 200) << name;
@@ -291,7 +269,7 @@ TEST_F(ReportTest, KnobWithoutDetentsStillGetsPositionPlots) {
   const Case c = make_case(0.5e-3, 1, /*detents=*/false);
   const auto files = write_report(c.r, c.d, c.p, dir_);
   ASSERT_EQ(files.size(), kFiles.size());
-  const Image im = decode(dir_ / "torque_position.png");
+  const Image im = decode_png(dir_ / "torque_position.png");
   EXPECT_GT(count(im, cloud_gray), im.width * im.height / 100);
 }
 
@@ -309,7 +287,7 @@ TEST_F(ReportTest, NonFiniteBandValuesAreLeftOut) {
   c.p.observation_half.assign(c.p.observation_half.size(),
                               std::numeric_limits<double>::infinity());
   ASSERT_EQ(write_report(c.r, c.d, c.p, dir_).size(), kFiles.size());
-  const Image im = decode(dir_ / "torque_position.png");
+  const Image im = decode_png(dir_ / "torque_position.png");
   EXPECT_GT(count(im, cloud_gray), im.width * im.height / 100);
 }
 
