@@ -1,8 +1,9 @@
 // PLplot drawing for the discrepancy report (report_plot.hpp). One stream
 // per file (plmkstrm … plend1), so a process can write any number of
-// reports; the page geometry follows apps/fit's report (text 1/50 of the
-// smaller page side, pen width from the pixel size).
+// reports; the page setup is apps/fit's report's (fit::begin_page).
 #include "report_plot.hpp"
+
+#include "knoblab/fit/plplot_shared.hpp"
 
 #include <plplot.h>
 
@@ -31,10 +32,8 @@ std::size_t utf8_length(const std::string& s) {
   return n;
 }
 
-struct Metrics {
-  double char_mm = 0, page_w_mm = 0, page_h_mm = 0, pen = 1.0, def_mm = 1.0;
-  bool vector = false;
-};
+using fit::page_text;
+using Metrics = fit::PageMetrics;
 
 // Padded data range of the layers, or the panel's fixed one.
 void ranges(const Panel& p, double& x0, double& x1, double& y0, double& y1) {
@@ -231,26 +230,9 @@ void draw_text_page(const Page& page, const Metrics& m, double top) {
   draw_paragraphs(page.notes, y - 0.02, 0.8, left, right, m);
 }
 
-void page_text(double y_chars, double scale, const Metrics& m, const std::string& text) {
-  plschr(0.0, scale * m.char_mm / m.def_mm);
-  plmtex("t", -y_chars / scale, 0.5, 0.5, text.c_str());
-  plschr(0.0, m.char_mm / m.def_mm);
-}
 
 void draw_page(const Page& page, int width_px, int height_px, bool vector) {
-  pladv(0);
-  Metrics m;
-  m.vector = vector;
-  PLFLT x0, x1, y0, y1;
-  plgspa(&x0, &x1, &y0, &y1);
-  m.page_w_mm = x1 - x0;
-  m.page_h_mm = y1 - y0;
-  m.char_mm = std::min(m.page_w_mm, m.page_h_mm) / 50.0;
-  PLFLT def = 0, ht = 0;
-  plgchr(&def, &ht);
-  m.def_mm = def;
-  plschr(0.0, m.char_mm / def);
-  m.pen = std::max(1.0, std::min(width_px, height_px) / 600.0);
+  const Metrics m = fit::begin_page(width_px, height_px, vector);
 
   const double cw = m.char_mm / m.page_w_mm, ch = m.char_mm / m.page_h_mm;
   plvpor(0.0, 1.0, 0.0, 1.0);

@@ -249,12 +249,7 @@ struct Range {
 };
 
 // Sizes derived from the page so text and marks scale with the image.
-struct Metrics {
-  double char_mm = 0;         // character height after scaling
-  double page_w_mm = 0, page_h_mm = 0;
-  double pen = 1.0;           // one "pen width" in PLplot width units (pixels)
-  bool vector = false;        // SVG: point clouds are embedded as one raster image
-};
+using Metrics = PageMetrics;
 
 // Non-finite values (a band whose covariance failed, say) are left out:
 // points are dropped, lines are broken there.
@@ -450,28 +445,9 @@ void draw_panel(const Panel& panel, double vx0, double vx1, double vy0, double v
   if (!panel.heading.empty()) plmtex("t", 1.5, 0.0, 0.0, panel.heading.c_str());
 }
 
-// Text centred on the page, `y` character heights below its top edge.
-void page_text(double y, double scale, double def_mm, const Metrics& m, const std::string& text) {
-  plschr(0.0, scale * m.char_mm / def_mm);
-  plmtex("t", -y / scale, 0.5, 0.5, text.c_str());
-  plschr(0.0, m.char_mm / def_mm);
-}
 
 void draw_page(const Page& page, const ReportOptions& opt, bool vector) {
-  pladv(0);
-  Metrics m;
-  m.vector = vector;
-  PLFLT x0, x1, y0, y1;
-  plgspa(&x0, &x1, &y0, &y1);
-  m.page_w_mm = x1 - x0;
-  m.page_h_mm = y1 - y0;
-  // PLplot's character height, 1/50 of the smaller page side (the cairo
-  // driver's text comes out about a third larger).
-  m.char_mm = std::min(m.page_w_mm, m.page_h_mm) / 50.0;
-  PLFLT def = 0, ht = 0;
-  plgchr(&def, &ht);
-  plschr(0.0, m.char_mm / def);
-  m.pen = std::max(1.0, std::min(opt.width_px, opt.height_px) / 600.0);
+  const Metrics m = begin_page(opt.width_px, opt.height_px, vector);
 
   // Layout in character heights, converted to page fractions.
   const double cw = m.char_mm / m.page_w_mm, ch = m.char_mm / m.page_h_mm;
@@ -484,8 +460,8 @@ void draw_page(const Page& page, const ReportOptions& opt, bool vector) {
   plvpor(0.0, 1.0, 0.0, 1.0);
   plwind(0.0, 1.0, 0.0, 1.0);
   plcol0(kBlack);
-  page_text(1.5, 1.25, def, m, page.title);
-  if (!page.subtitle.empty()) page_text(3.3, 0.85, def, m, page.subtitle);
+  page_text(1.5, 1.25, m, page.title);
+  if (!page.subtitle.empty()) page_text(3.3, 0.85, m, page.subtitle);
 
   const std::size_t np = page.panels.size();
   const double h = (top - bottom - gap * static_cast<double>(np - 1)) / static_cast<double>(np);

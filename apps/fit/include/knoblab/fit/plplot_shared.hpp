@@ -1,6 +1,7 @@
 // What every PLplot report in the process shares: PLplot keeps global state,
 // so one lock serialises all of them (the fit report and the discrepancy
-// report alike), and one rule for showing text as written.
+// report alike), one rule for showing text as written, and one page setup
+// (type scale, pen, the title lines).
 #pragma once
 
 #include <mutex>
@@ -13,5 +14,23 @@ std::mutex& plplot_mutex();
 
 // PLplot's escape character '#' doubled, so text is shown as written.
 std::string plplot_escape(const std::string& s);
+
+// A page's size and type scale, measured from the open stream.
+struct PageMetrics {
+  double char_mm = 0;                   // character height after scaling
+  double def_mm = 1;                    // PLplot's default one (plschr scales it)
+  double page_w_mm = 0, page_h_mm = 0;
+  double pen = 1.0;                     // one pen width in PLplot width units (pixels)
+  bool vector = false;                  // SVG: point clouds are embedded as one raster image
+};
+
+// Advances to a new page and sets its type: characters 1/50 of the smaller
+// page side (the cairo driver's text comes out about a third larger), pens
+// one 600th of the smaller pixel side.
+PageMetrics begin_page(int width_px, int height_px, bool vector);
+
+// Text centred on the page, `y_chars` character heights below its top edge,
+// `scale` times the page's character height.
+void page_text(double y_chars, double scale, const PageMetrics& m, const std::string& text);
 
 }  // namespace knoblab::fit
