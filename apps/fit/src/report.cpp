@@ -445,7 +445,6 @@ void draw_panel(const Panel& panel, double vx0, double vx1, double vy0, double v
   if (!panel.heading.empty()) plmtex("t", 1.5, 0.0, 0.0, panel.heading.c_str());
 }
 
-
 void draw_page(const Page& page, const ReportOptions& opt, bool vector) {
   const Metrics m = begin_page(opt.width_px, opt.height_px, vector);
 
