@@ -190,8 +190,8 @@ TEST(Daemon, ModbusBiometricsAtThirtyTwoHertzAndAmplifierFaultsGoSafe) {
   modbus::PollerConfig pc;
   pc.amplifier.host = pc.biometrics.host = "127.0.0.1";
   pc.amplifier.port = pc.biometrics.port = server.port();
-  // The poller is an ordinary thread here; on a busy shared host it can wait
-  // longer than the default 50 ms (sized for the appliance's RT kernel).
+  // On a busy shared host without an RT kernel even the poller's SCHED_FIFO
+  // threads can wait longer than the default 50 ms (sized for the appliance).
   pc.comms_timeout = pc.biometrics_timeout = modbus::Millis{400};
   cfg.modbus = pc;
   Daemon daemon(cfg, std::move(daq), std::make_unique<hal::MemoryLines>(false));

@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <modbus.h>
+#include <pthread.h>
+#include <sched.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -39,6 +42,9 @@ class PollerTest : public ::testing::Test {
     c.on_sample = [this](const BiometricSample& s) {
       std::lock_guard lock(mutex_);
       samples_.push_back(s);
+      sched_param sp{};
+      pthread_getschedparam(pthread_self(), &policy_, &sp);  // the poller thread's
+      priority_ = sp.sched_priority;
     };
     poller_ = std::make_unique<Poller>(std::move(c));
     poller_->start();
@@ -65,7 +71,30 @@ class PollerTest : public ::testing::Test {
   std::unique_ptr<Poller> poller_;
   std::mutex mutex_;
   std::vector<BiometricSample> samples_;
+  int policy_ = -1, priority_ = -1;  // of the thread that delivered the last sample
 };
+
+TEST_F(PollerTest, ItsThreadsRunRealtimeAtTheConfiguredPriority) {
+  if (geteuid() != 0) GTEST_SKIP() << "SCHED_FIFO needs root (CAP_SYS_NICE)";
+  PollerConfig c = local_config(sim_->port());
+  c.priority = 40;
+  start_poller(c);
+  wait_healthy();
+  ASSERT_TRUE(wait_for([&] { return !samples().empty(); }, 2s));
+  EXPECT_TRUE(poller_->stats().realtime) << poller_->stats().last_error;
+  std::lock_guard lock(mutex_);
+  EXPECT_EQ(policy_, SCHED_FIFO);
+  EXPECT_EQ(priority_, 40);
+}
+
+TEST_F(PollerTest, WithoutAPriorityItsThreadsRunOrdinary) {
+  start_poller();
+  wait_healthy();
+  ASSERT_TRUE(wait_for([&] { return !samples().empty(); }, 2s));
+  EXPECT_FALSE(poller_->stats().realtime);
+  std::lock_guard lock(mutex_);
+  EXPECT_EQ(policy_, SCHED_OTHER);
+}
 
 TEST_F(PollerTest, BiometricsArriveAt32HzExactlyOnce) {
   start_poller();

@@ -1,5 +1,6 @@
 #include "knoblab/hapticd/daemon.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cmath>
@@ -26,6 +27,10 @@ struct Daemon::Impl {
 };
 
 namespace {
+
+// The Modbus poller's SCHED_FIFO priority, this far below the loop's (80 → 50):
+// above ordinary work, never in the loop's way.
+constexpr int kPollerPriorityBelowLoop = 30;
 
 // Amplifier status over Modbus → the supervisor's fault bits.
 std::uint32_t faults_from_modbus(std::uint32_t word) {
@@ -66,6 +71,9 @@ Daemon::Daemon(DaemonConfig cfg, std::unique_ptr<capture::Daq> daq, std::unique_
   }
   if (cfg_.modbus) {
     modbus::PollerConfig pc = *cfg_.modbus;
+    // The poller's threads run realtime below the loop (its comms watchdog
+    // must not trip on a busy machine), unless the config chose a priority.
+    if (pc.priority == 0) pc.priority = std::max(1, cfg_.loop.priority - kPollerPriorityBelowLoop);
     pc.on_sample = [this](const modbus::BiometricSample& b) {
       store::BiometricSample s;
       s.seq = static_cast<std::int64_t>(b.counter);

@@ -1,7 +1,11 @@
 #include "knoblab/modbus/poller.hpp"
 
+#include <pthread.h>
+#include <sched.h>
+
 #include <algorithm>
 #include <array>
+#include <cstring>
 #include <stdexcept>
 #include <utility>
 
@@ -128,7 +132,23 @@ std::optional<AmplifierStatus> Poller::amplifier() const {
 
 // ---- poller thread ---------------------------------------------------------
 
+void Poller::raise_priority() {
+  if (config_.priority <= 0) return;
+  sched_param sp{};
+  sp.sched_priority = config_.priority;
+  const int err = pthread_setschedparam(pthread_self(), SCHED_FIFO, &sp);
+  std::lock_guard lock(mutex_);
+  if (err == 0) {
+    stats_.realtime = true;
+  } else {
+    stats_.realtime = false;
+    stats_.last_error = "SCHED_FIFO priority " + std::to_string(config_.priority) + " refused (" +
+                        std::strerror(err) + "): polling at ordinary priority";
+  }
+}
+
 void Poller::run() {
+  raise_priority();
   auto next_amp = Clock::now();
   auto next_bio = next_amp;
   auto advance = [](Clock::time_point& next, Millis period) {
@@ -318,6 +338,7 @@ bool Poller::execute(const AmpCommand& c) {
 // ---- supervisor thread -----------------------------------------------------
 
 void Poller::supervise() {
+  raise_priority();
   for (;;) {
     publish(Clock::now());
     std::unique_lock lock(mutex_);

@@ -48,6 +48,10 @@ struct PollerConfig {
   Millis enable_grace{50};       // after enabling, time the amp gets to report it
   Millis backoff_min{20};        // reconnect delay, doubling per failure …
   Millis backoff_max{500};       // … up to this
+  // SCHED_FIFO priority of the poller's threads (0: ordinary scheduling).
+  // Below the realtime loop's, above everything else: the comms watchdog
+  // above must not trip because a busy machine starved the thread reading.
+  int priority = 0;
 
   // Called on the poller thread with each 32 Hz sample exactly once, in
   // counter order. Keep it short (queue to the store): it delays polling.
@@ -68,6 +72,7 @@ struct PollerStats {
   std::uint64_t connects = 0, connect_failures = 0, mismatches = 0;
   std::uint64_t commands_done = 0, commands_failed = 0, commands_rejected = 0;
   std::string last_error;
+  bool realtime = false;  // the threads run at PollerConfig::priority (SCHED_FIFO)
 };
 
 struct AmpCommand {
@@ -109,6 +114,7 @@ class Poller {
   using Clock = std::chrono::steady_clock;
   struct Link;
 
+  void raise_priority();  // on each of its threads, as PollerConfig::priority asks
   void run();
   void supervise();
   void publish(Clock::time_point now);
