@@ -88,9 +88,7 @@ int run_simulate(const Args& args) {
   }
   if (auto text = args.get("effects")) {
     try {
-      for (const sim::EffectSpec& e : sim::parse_effect_specs(*text)) {
-        if (!sim::apply_to_knob(e, req.knob)) req.effects.push_back(e);
-      }
+      req.effects = sim::parse_effect_specs(*text);
     } catch (const std::invalid_argument& e) {
       throw UsageError(std::string("--effects: ") + e.what());
     }

@@ -43,14 +43,19 @@ void validate(const SimulationRequest& r) {
 
 }  // namespace
 
-SimulationResult simulate(const SimulationRequest& r, store::Store* db) {
+SimulationResult simulate(const SimulationRequest& request, store::Store* db) {
+  // Knob terms (spring, detent shape, walls, backlash, presliding) fold into
+  // the knob, rig effects (compliance, delay, clipping) into the plant's
+  // config, the rest are knob torques on the plant. The metadata lists all.
+  SimulationRequest r = request;
+  std::vector<const sim::EffectSpec*> rest;
+  for (const sim::EffectSpec& e : request.effects)
+    if (!sim::apply_to_knob(e, r.knob)) rest.push_back(&e);
   validate(r);
-  // Rig effects (compliance, delay, clipping) go into the config, the rest
-  // are knob torques on the plant.
   sim::PlantConfig plant = plant_config(r);
   std::vector<const sim::EffectSpec*> torques;
-  for (const sim::EffectSpec& e : r.effects)
-    if (!sim::apply_to_plant(e, plant)) torques.push_back(&e);
+  for (const sim::EffectSpec* e : rest)
+    if (!sim::apply_to_plant(*e, plant)) torques.push_back(e);
   capture::SimDaq daq(plant, r.rate_hz);
   for (const sim::EffectSpec* e : torques) daq.plant().add_effect(sim::make_knob_effect(*e));
 

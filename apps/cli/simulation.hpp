@@ -26,8 +26,8 @@ struct SimulationRequest {
   sim::AmpMode amp = sim::AmpMode::Current;
   capture::PidGains pid{};
   model::SweptSine stimulus = model::SweptSine::spatial();
-  // Effects beyond the thesis model (torque specs; knob-term specs are
-  // folded into `knob` by the caller with sim::apply_to_knob).
+  // Effects beyond the thesis model, any kind (sim/library_effects.hpp):
+  // simulate() folds knob terms into `knob` and rig effects into the plant.
   std::vector<sim::EffectSpec> effects;
 };
 

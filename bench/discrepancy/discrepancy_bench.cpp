@@ -110,9 +110,7 @@ cli::SimulationResult simulated(const std::string& knob, const std::string& effe
   req.seconds = 8.0;
   req.rate_hz = 5000.0;
   req.seed = seed;
-  for (const sim::EffectSpec& e : sim::parse_effect_specs(effects)) {
-    if (!sim::apply_to_knob(e, req.knob)) req.effects.push_back(e);
-  }
+  req.effects = sim::parse_effect_specs(effects);
   return cli::simulate(req, nullptr);
 }
 

@@ -20,9 +20,7 @@ discovery::DiscrepancyResult discover_with(const std::string& effects,
   req.knob_name = knob;
   req.knob = *sim::presets::knob(req.knob_name);
   req.seconds = 8.0;
-  for (const sim::EffectSpec& e : sim::parse_effect_specs(effects)) {
-    if (!sim::apply_to_knob(e, req.knob)) req.effects.push_back(e);
-  }
+  req.effects = sim::parse_effect_specs(effects);
   const SimulationResult s = simulate(req, nullptr);
   return discovery::discover(fit::prepare(s.capture));
 }

@@ -6,6 +6,7 @@
 
 #include "knoblab/interchange/csv.hpp"
 #include "knoblab/model/periodogram.hpp"
+#include "knoblab/sim/library_effects.hpp"
 #include "knoblab/sim/presets.hpp"
 #include "knoblab/store/store.hpp"
 #include "process.hpp"
@@ -71,6 +72,31 @@ TEST(Simulate, SameSeedSameCaptureOtherSeedOtherNoise) {
   const std::string a = sim("7", "a.csv"), b = sim("7", "b.csv"), c = sim("8", "c.csv");
   EXPECT_EQ(a, b);
   EXPECT_NE(a, c);
+}
+
+// Every effect asked for is in the capture's description, the ones folded
+// into the knob (hysteresis) as well as the rig's (delay) and torques (offset),
+// and it acts: the play-free, undelayed knob gives other samples.
+TEST(Simulate, TheEffectsAskedForAreInTheCaptureAndAct) {
+  ScratchDir dir;
+  const std::string effects = "hysteresis:presliding=0.002;time_delay:delay=0.0005;offset:tau0=0.001";
+  RunResult r = run_knoblab({"simulate", "--knob", "moderate-detents", "--seconds", "0.5", "--effects", effects,
+                             "--out", (dir / "with.csv").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_knoblab({"simulate", "--knob", "moderate-detents", "--seconds", "0.5", "--out", (dir / "without.csv").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string with = read_file(dir / "with.csv");
+  const std::string key = "# effects: ";
+  const std::size_t at = with.find(key);
+  ASSERT_NE(at, std::string::npos) << with.substr(0, 800);
+  const std::string line = with.substr(at + key.size(), with.find('\n', at) - at - key.size());
+  const auto recorded = sim::parse_effect_specs(line), asked = sim::parse_effect_specs(effects);
+  ASSERT_EQ(recorded.size(), asked.size()) << line;
+  for (std::size_t i = 0; i < asked.size(); ++i) {
+    EXPECT_EQ(recorded[i].id, asked[i].id);
+    EXPECT_EQ(recorded[i].params, asked[i].params) << recorded[i].id;
+  }
+  EXPECT_NE(data_lines(with), data_lines(read_file(dir / "without.csv")));
 }
 
 TEST(Simulate, TracksTheSweptSineAndStaysInsideTheSensorRange) {

@@ -1,6 +1,7 @@
 #include "knoblab/sim/library_effects.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -91,8 +92,8 @@ std::string EffectSpec::text() const {
   char sep = ':';
   for (const auto& [k, v] : params) {
     char buf[64];
-    std::snprintf(buf, sizeof buf, "%.17g", v);
-    out += sep + k + "=" + buf;
+    const auto end = std::to_chars(buf, buf + sizeof buf, v).ptr;  // shortest that reads back the same
+    out += sep + k + "=" + std::string(buf, end);
     sep = ',';
   }
   return out;
