@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "knoblab/model/effects.hpp"
-#include "knoblab/model/filters.hpp"
+#include "knoblab/model/quantile.hpp"
 #include "knoblab/sim/coupling.hpp"
 
 namespace knoblab::bench {
@@ -17,10 +17,7 @@ namespace {
 std::vector<std::size_t> analysed(const fit::FitData& d, const sim::KnobParams& knob) {
   std::vector<double> speed(d.size());
   for (std::size_t i = 0; i < d.size(); ++i) speed[i] = std::abs(d.omega[i]);
-  std::vector<double> sorted = speed;
-  const auto k = static_cast<std::ptrdiff_t>(0.95 * static_cast<double>(sorted.size() - 1));
-  std::nth_element(sorted.begin(), sorted.begin() + k, sorted.end());
-  const double slow = std::max(0.02 * sorted[static_cast<std::size_t>(k)], knob.stick.dv);
+  const double slow = std::max(0.02 * model::quantile(speed, 0.95), knob.stick.dv);
   std::vector<std::size_t> rows;
   for (std::size_t i = 0; i < d.size(); ++i)
     if (speed[i] >= slow) rows.push_back(i);

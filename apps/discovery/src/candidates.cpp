@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "knoblab/model/periodogram.hpp"
+#include "knoblab/model/quantile.hpp"
 
 namespace knoblab::discovery::detail {
 
@@ -33,13 +34,6 @@ std::vector<double> regress(const std::vector<std::vector<double>>& cols,
   const Eigen::VectorXd beta = X.colPivHouseholderQr().solve(y);
   if (sse) *sse = (y - X * beta).squaredNorm();
   return {beta.data(), beta.data() + k};
-}
-
-double quantile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  const auto k = static_cast<std::ptrdiff_t>(q * static_cast<double>(v.size() - 1));
-  std::nth_element(v.begin(), v.begin() + k, v.end());
-  return v[static_cast<std::size_t>(k)];
 }
 
 // y binned over position (mean per bin), for a periodogram.
@@ -214,7 +208,7 @@ std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& m,
     case EffectId::Stribeck: {
       std::vector<double> speed;
       for (const std::size_t i : train) speed.push_back(std::abs(d.omega[i]));
-      const double s95 = quantile(speed, 0.95);
+      const double s95 = model::quantile(speed, 0.95);
       double best_sse = 0.0;
       std::vector<double> start;
       for (const double f : {0.02, 0.05, 0.1, 0.2, 0.4}) {
@@ -295,7 +289,7 @@ std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& m,
       std::optional<ExtendedModel> best;
       double best_rmse = 0.0;
       for (const double q : {0.8, 0.9, 0.95, 0.98}) {
-        const double at = quantile(mag, q);
+        const double at = model::quantile(mag, q);
         const auto b = regress({column(train, [&](std::size_t i) {
                                  const double th = d.theta[i];
                                  return th > at ? th - at : th < -at ? th + at : 0.0;

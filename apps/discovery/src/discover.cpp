@@ -15,6 +15,7 @@
 #include "knoblab/discovery/discrepancy.hpp"
 #include "knoblab/discovery/whiteness.hpp"
 #include "knoblab/fit/knob_fit.hpp"
+#include "knoblab/model/quantile.hpp"
 
 namespace knoblab::discovery {
 
@@ -194,9 +195,7 @@ namespace {
 double slow_speed(const fit::FitData& d, const fit::FitResult& base_fit) {
   std::vector<double> speed(d.size());
   for (std::size_t i = 0; i < d.size(); ++i) speed[i] = std::abs(d.omega[i]);
-  const auto k = static_cast<std::ptrdiff_t>(0.95 * static_cast<double>(d.size() - 1));
-  std::nth_element(speed.begin(), speed.begin() + k, speed.end());
-  double slow = 0.02 * speed[static_cast<std::size_t>(k)];
+  double slow = 0.02 * model::quantile(std::move(speed), 0.95);
   if (base_fit.stick) slow = std::max(slow, base_fit.stick->dv);
   return slow;
 }

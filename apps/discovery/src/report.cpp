@@ -15,6 +15,7 @@
 
 #include "knoblab/discovery/whiteness.hpp"
 #include "knoblab/fit/plplot_shared.hpp"
+#include "knoblab/model/quantile.hpp"
 #include "report_plot.hpp"
 #include "report_summary.hpp"
 
@@ -71,9 +72,7 @@ double residual_limit(const ResidualTrace& tr) {
     if (std::isfinite(tr.after[i])) a.push_back(std::abs(tr.after[i]));
   }
   if (a.empty()) return 1.0;
-  const auto k = static_cast<std::ptrdiff_t>(0.995 * static_cast<double>(a.size() - 1));
-  std::nth_element(a.begin(), a.begin() + k, a.end());
-  const double lim = 1.1 * kmNm * a[static_cast<std::size_t>(k)];
+  const double lim = 1.1 * kmNm * model::quantile(std::move(a), 0.995);
   return lim > 0.0 ? lim : 1.0;
 }
 

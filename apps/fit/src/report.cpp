@@ -19,6 +19,7 @@
 // the dashed line is a curve rather than noise.
 #include "knoblab/fit/report.hpp"
 #include "knoblab/fit/plplot_shared.hpp"
+#include "knoblab/model/quantile.hpp"
 
 #include <plplot.h>
 
@@ -605,10 +606,7 @@ double finite_quantile(const std::vector<double>& v, double q) {
   f.reserve(v.size());
   for (const double x : v)
     if (std::isfinite(x)) f.push_back(x);
-  if (f.empty()) return std::numeric_limits<double>::quiet_NaN();
-  const auto k = static_cast<std::ptrdiff_t>(q * static_cast<double>(f.size() - 1));
-  std::nth_element(f.begin(), f.begin() + k, f.end());
-  return f[static_cast<std::size_t>(k)];
+  return model::quantile(std::move(f), q);
 }
 
 // A residual panel's y range (presentation units): six robust standard

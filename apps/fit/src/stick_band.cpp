@@ -14,6 +14,7 @@
 #include <array>
 #include <cmath>
 
+#include "knoblab/model/quantile.hpp"
 #include "residual.hpp"
 
 namespace knoblab::fit::detail {
@@ -24,12 +25,6 @@ constexpr std::size_t kBins = 30;
 constexpr std::size_t kMinPerBin = 8;
 constexpr double kExcess = 3.0;
 
-double quantile(std::vector<double> v, double q) {
-  const auto k = static_cast<std::ptrdiff_t>(q * static_cast<double>(v.size() - 1));
-  std::nth_element(v.begin(), v.begin() + k, v.end());
-  return v[static_cast<std::size_t>(k)];
-}
-
 }  // namespace
 
 double strided_quantile(std::span<const double> v, double q) {
@@ -37,7 +32,7 @@ double strided_quantile(std::span<const double> v, double q) {
   std::vector<double> sample;
   sample.reserve(v.size() / stride + 1);
   for (std::size_t i = 0; i < v.size(); i += stride) sample.push_back(v[i]);
-  return quantile(std::move(sample), q);
+  return model::quantile(std::move(sample), q);
 }
 
 std::optional<StickBand> estimate_stick_band(const FitData& d,
@@ -103,8 +98,8 @@ std::optional<StickBand> estimate_stick_band(const FitData& d,
   }
   band.samples = inside.size();
   if (inside.size() < kMinPerBin) return std::nullopt;
-  band.D_pos = std::max(0.0, quantile(inside, 0.995));
-  band.D_neg = std::max(0.0, -quantile(inside, 0.005));
+  band.D_pos = std::max(0.0, model::quantile(inside, 0.995));
+  band.D_neg = std::max(0.0, -model::quantile(inside, 0.005));
   return band;
 }
 
