@@ -30,12 +30,17 @@ ForwardError forward_error(const ExtendedModel& m, const fit::FitData& d,
   const ActiveEffect* delay = m.find(EffectId::TimeDelay);
   const double shift = delay ? delay->setting * d.rate_hz : 0.0;  // samples
   const auto torque_at = [&](std::size_t i) { return value_at(d.torque, static_cast<double>(i) + shift); };
+  // Under compliance the model moves the knob, and the encoder reads it plus
+  // the coupling's twist, which the measured torque sets (row_inputs).
+  const bool twisted = m.has(EffectId::Compliance) && delay == nullptr;
+  const auto twist = [&](std::size_t j) { return twisted ? d.theta[rows[j]] - in[j].theta : 0.0; };
+  const auto twist_rate = [&](std::size_t j) { return twisted ? d.omega[rows[j]] - in[j].omega : 0.0; };
 
   double ss_theta = 0.0, ss_omega = 0.0;
   std::size_t count = 0;
   for (std::size_t w = 0; w + steps < rows.size(); w += steps + 1) {
     const std::size_t* window = rows.data() + w;
-    double theta = d.theta[window[0]], omega = d.omega[window[0]];
+    double theta = d.theta[window[0]] - twist(w), omega = d.omega[window[0]] - twist_rate(w);
     for (std::size_t k = 1; k <= steps; ++k) {
       RowInputs r = in[w + k - 1];
       r.theta = theta, r.omega = omega, r.alpha = 0.0;  // M·θ̈ is what is integrated
@@ -53,7 +58,8 @@ ForwardError forward_error(const ExtendedModel& m, const fit::FitData& d,
       // Dry friction stops the knob; it does not push it back through zero.
       omega = (omega != 0.0 && next * omega < 0.0) ? 0.0 : next;
       theta += h * omega;
-      const double et = theta - d.theta[window[k]], ew = omega - d.omega[window[k]];
+      const double et = theta + twist(w + k) - d.theta[window[k]];
+      const double ew = omega + twist_rate(w + k) - d.omega[window[k]];
       // A knob a radian off within one short window has not been predicted
       // badly, the model runs away (negative damping fitted for a direction
       // the recording never turned): no figure rather than a huge one.
