@@ -191,17 +191,16 @@ int main(int argc, char** argv) {
           report(run_case({k, e.id, fmt(e.spec, setting)}, static_cast<std::uint64_t>(seed)));
         }
         if (only.empty() || only == "compliance") {
+          const char* spec = "compliance:stiffness=%.3g";
           const auto excess = [&](double stiffness) {
             discovery::DiscrepancyOptions base_only;
             base_only.max_findings = 0;
-            const fit::FitData d =
-                prepared_capture(k, fmt("compliance:stiffness=%.3g", stiffness), static_cast<std::uint64_t>(seed));
+            const fit::FitData d = prepared_capture(k, fmt(spec, stiffness), static_cast<std::uint64_t>(seed));
             const double b = discovery::discover(d, base_only).base.heldout_rmse_Nm;
             return std::sqrt(std::max(b * b - r * r, 0.0));
           };
           const double stiffness = bench::size_compliance(excess, kOperatorRms * r);
-          report(run_case({k, "compliance", fmt("compliance:stiffness=%.3g", stiffness)},
-                          static_cast<std::uint64_t>(seed)));
+          report(run_case({k, "compliance", fmt(spec, stiffness)}, static_cast<std::uint64_t>(seed)));
         }
       }
     }

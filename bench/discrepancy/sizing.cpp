@@ -30,17 +30,24 @@ double rms(const std::vector<double>& signature, const std::vector<std::size_t>&
   return rows.empty() ? 0.0 : std::sqrt(s / static_cast<double>(rows.size()));
 }
 
-// The setting in [lo, hi] (geometric bisection) where the signature's RMS,
-// monotone in it, reaches `target`; an end when it does not get there.
-double solve(const std::function<std::vector<double>(double)>& signature, const std::vector<std::size_t>& rows,
-             double lo, double hi, double target, bool increasing, int halvings = 40) {
-  const auto above = [&](double s) { return (rms(signature(s), rows) >= target) == increasing; };
+// The setting in [lo, hi] (geometric bisection) where `reaches`, monotone
+// in it (true toward hi when `increasing`, toward lo otherwise), starts to
+// hold; the far end when it never holds.
+double boundary(double lo, double hi, bool increasing, int halvings, const std::function<bool(double)>& reaches) {
+  const auto above = [&](double s) { return reaches(s) == increasing; };
   if (increasing ? !above(hi) : above(lo)) return increasing ? hi : lo;
   for (int it = 0; it < halvings; ++it) {
     const double mid = std::sqrt(lo * hi);
     (above(mid) ? hi : lo) = mid;
   }
   return increasing ? hi : lo;
+}
+
+// The setting in [lo, hi] where the signature's RMS, monotone in it, reaches
+// `target`; an end when it does not get there.
+double solve(const std::function<std::vector<double>(double)>& signature, const std::vector<std::size_t>& rows,
+             double lo, double hi, double target, bool increasing) {
+  return boundary(lo, hi, increasing, 40, [&](double s) { return rms(signature(s), rows) >= target; });
 }
 
 // Coulomb as the knob's sliding law has it (C_pos forward, −C_neg back).
@@ -110,13 +117,9 @@ double size_backlash(const fit::FitData& d, const sim::KnobParams& knob, double 
 }
 
 double size_compliance(const std::function<double(double)>& excess, double target) {
-  double lo = kMinCouplingStiffness, hi = sim::CouplingParams{}.stiffness;
-  if (excess(lo) < target) return lo;
-  for (int it = 0; it < 8; ++it) {  // each step a capture and a fit: ≈ 1 % of the log range
-    const double mid = std::sqrt(lo * hi);
-    (excess(mid) >= target ? lo : hi) = mid;
-  }
-  return lo;
+  // Each step a capture and a fit: 8 halvings, ≈ 1 % of the log range.
+  return boundary(kMinCouplingStiffness, sim::CouplingParams{}.stiffness, false, 8,
+                  [&](double k) { return excess(k) >= target; });
 }
 
 }  // namespace knoblab::bench

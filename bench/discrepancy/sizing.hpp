@@ -1,7 +1,8 @@
 // Sizes for the concealed operator effects (time_delay, saturation,
-// hysteresis, backlash, compliance), whose setting is an angle, a time, a
-// limit or a stiffness rather than a torque amplitude: each setting is the one whose signature on the
-// clean knob's capture — the operator applied to its prepared motion and
+// hysteresis, backlash), whose setting is an angle, a time or a limit rather
+// than a torque amplitude, and for compliance (a stiffness; last below):
+// each operator's setting is the one whose signature on the clean knob's
+// capture — the operator applied to its prepared motion and
 // torque, minus the torque without it — has a given RMS over the rows
 // discovery analyses (faster than 2 % of the 95th-percentile speed and than
 // the knob's stick band). That puts them on the same footing as the torque

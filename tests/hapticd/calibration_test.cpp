@@ -17,10 +17,10 @@
 #include "knoblab/hapticd/calibration_controller.hpp"
 #include "knoblab/hapticd/core.hpp"
 #include "knoblab/hapticd/daemon.hpp"
-#include "shared_host.hpp"
 #include "knoblab/hal/memory_lines.hpp"
 #include "knoblab/store/store.hpp"
 #include "knoblab/sim/presets.hpp"
+#include "shared_host.hpp"
 
 namespace knoblab::hapticd {
 namespace {
@@ -310,7 +310,7 @@ TEST(CalibrationDaemon, StartCalibrationRunsRecordsAndPublishesItsResultOnce) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
     d.stop();
     loop.join();
-    shared_host::report_timing("StartCalibration", timing);
+    shared_host::report_timing(timing);
   }
   store::Store s = store::Store::open(dir / "lab.sqlite");
   const auto caps = s.list_captures();

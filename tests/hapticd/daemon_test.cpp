@@ -8,9 +8,9 @@
 #include "knoblab/capture/sim_daq.hpp"
 #include "knoblab/hal/memory_lines.hpp"
 #include "knoblab/hapticd/daemon.hpp"
-#include "shared_host.hpp"
 #include "knoblab/sim/presets.hpp"
 #include "knoblab/store/store.hpp"
+#include "shared_host.hpp"
 
 namespace knoblab::hapticd {
 namespace {
@@ -50,7 +50,7 @@ struct Rig {
   ~Rig() {
     daemon->stop();
     loop.join();
-    shared_host::report_timing(::testing::UnitTest::GetInstance()->current_test_info()->name(), timing);
+    shared_host::report_timing(timing);
   }
   std::vector<FinishedRecording> wait_finished(std::chrono::seconds timeout) {
     const auto end = std::chrono::steady_clock::now() + timeout;
@@ -224,7 +224,7 @@ TEST(Daemon, ModbusBiometricsAtThirtyTwoHertzAndAmplifierFaultsGoSafe) {
   daemon.stop();
   loop.join();
   server.stop();
-  shared_host::report_timing("ModbusBiometrics", timing);
+  shared_host::report_timing(timing);
 
   store::Store s = store::Store::open(db.path());
   const auto bio = s.load_biometrics(f[0].capture_id);

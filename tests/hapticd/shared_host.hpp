@@ -6,6 +6,8 @@
 // faults from the lines and Modbus) does not depend on when a cycle ran.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <cstdio>
 #include <limits>
 
@@ -19,8 +21,9 @@ inline void configure(DaemonConfig& cfg) {
   cfg.core.limits.max_consecutive_overruns = std::numeric_limits<int>::max();
 }
 
-// One line in the test log: how late the loop ran on this host.
-inline void report_timing(const char* test, const rt::LoopResult& r) {
+// One line in the running test's log: how late the loop ran on this host.
+inline void report_timing(const rt::LoopResult& r) {
+  const char* test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
   const rt::TimingSummary s = rt::summarize(r.stats);
   std::printf("[ timing   ] %s: %s, %llu cycles, %llu overruns (at most %llu in a row), "
               "wake-up p99 %.0f us, max %.0f us\n",

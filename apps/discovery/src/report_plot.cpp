@@ -230,7 +230,6 @@ void draw_text_page(const Page& page, const Metrics& m, double top) {
   draw_paragraphs(page.notes, y - 0.02, 0.8, left, right, m);
 }
 
-
 void draw_page(const Page& page, int width_px, int height_px, bool vector) {
   const Metrics m = fit::begin_page(width_px, height_px, vector);
 

@@ -28,8 +28,6 @@ class BoxClock {
   // When the box took a sample, on the host clock. Call after observe().
   Clock::time_point to_host(std::uint32_t box_time_ms) const;
 
-  bool valid() const { return valid_; }
-
  private:
   // Two buckets of half a window each: the estimate is the smaller of the
   // current and the previous bucket's minimum, so it always covers between

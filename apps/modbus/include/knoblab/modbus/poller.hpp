@@ -23,10 +23,10 @@
 #include <thread>
 #include <vector>
 
+#include "knoblab/modbus/box_clock.hpp"
 #include "knoblab/modbus/codec.hpp"
 #include "knoblab/modbus/connection.hpp"
 #include "knoblab/modbus/endpoint.hpp"
-#include "knoblab/modbus/box_clock.hpp"
 #include "knoblab/modbus/sample_sequencer.hpp"
 #include "knoblab/modbus/status_bits.hpp"
 
