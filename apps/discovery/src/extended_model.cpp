@@ -207,12 +207,13 @@ struct ChunkCost {
   bool operator()(const T* p, T* residual) const {
     using std::abs;
     using std::isfinite;  // and ceres::isfinite, ceres::abs for Jets, by ADL
+    const auto base = model::ThesisModel<T>::from_params(p);
     for (std::size_t j = 0; j < rows.size(); ++j) {
       if (!rows[j].described) {
         residual[j] = T(0);
         continue;
       }
-      residual[j] = extended_torque(*layout, p, rows[j]) - T(torque[j]);
+      residual[j] = extended_torque(*layout, p, base, rows[j]) - T(torque[j]);
       // A trial step that overflows (a power law's exponent, a runaway
       // operator), or whose squares would, is refused quietly; Ceres
       // shrinks the step.
@@ -283,9 +284,10 @@ std::vector<double> residuals(const ExtendedModel& m, const fit::FitData& d,
   const Layout L = layout_of(m);
   const std::vector<double> p = m.flat();
   const std::vector<RowInputs> in = row_inputs(d, rows, m);
+  const auto base = model::ThesisModel<double>::from_params(p.data());
   std::vector<double> r(rows.size());
   for (std::size_t j = 0; j < rows.size(); ++j) {
-    r[j] = in[j].described          ? d.torque[rows[j]] - extended_torque(L, p.data(), in[j])
+    r[j] = in[j].described          ? d.torque[rows[j]] - extended_torque(L, p.data(), base, in[j])
            : std::isnan(in[j].wound) ? std::numeric_limits<double>::quiet_NaN()
                                      : d.torque[rows[j]] - in[j].wound;
   }

@@ -94,11 +94,12 @@ struct Layout {
 };
 Layout layout_of(const ExtendedModel& m);
 
+// `base`: Eq. 6's terms from p, made once for many rows (from_params copies
+// every parameter, a Jet each under autodiff).
 template <typename T>
-T extended_torque(const Layout& L, const T* p, const RowInputs& r) {
+T extended_torque(const Layout& L, const T* p, const model::ThesisModel<T>& base, const RowInputs& r) {
   using std::cos;
   using std::sin;
-  const model::ThesisModel<T> base = model::ThesisModel<T>::from_params(p);
   T offset(0);
   const ActiveEffect* hysteresis = nullptr;
   const ActiveEffect* saturation = nullptr;
@@ -170,6 +171,11 @@ T extended_torque(const Layout& L, const T* p, const RowInputs& r) {
   }
   if (saturation) tau = model::saturate(tau, T(saturation->setting));
   return tau;
+}
+
+template <typename T>
+T extended_torque(const Layout& L, const T* p, const RowInputs& r) {
+  return extended_torque(L, p, model::ThesisModel<T>::from_params(p), r);
 }
 
 // Least squares of the extended model over the rows it describes (Ceres,
