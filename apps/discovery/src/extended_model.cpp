@@ -141,11 +141,12 @@ std::vector<RowInputs> row_inputs(const fit::FitData& d, std::span<const std::si
     // model as it stands.
     const Layout L = layout_of(m);
     const std::vector<double> p = m.flat();
+    const auto base = model::ThesisModel<double>::from_params(p.data());
     const auto& f = m.base;
     const auto free_speed = [&](double phi, bool standing) {
       RowInputs at_rest;
       at_rest.theta = phi;
-      const double pull = -extended_torque(L, p.data(), at_rest);
+      const double pull = -extended_torque(L, p.data(), base, at_rest);
       const bool fwd = pull > 0.0;
       const double kinetic = std::abs(fwd ? f[model::kC_vel_pos] : f[model::kC_vel_neg]);
       const double hold = standing ? std::max(m.breakaway, kinetic) : kinetic;

@@ -94,8 +94,9 @@ struct Layout {
 };
 Layout layout_of(const ExtendedModel& m);
 
-// `base`: Eq. 6's terms from p, made once for many rows (from_params copies
-// every parameter, a Jet each under autodiff).
+// `base`: Eq. 6's terms from p (ThesisModel::from_params), made once by the
+// caller for many rows: from_params copies every parameter, a Jet each under
+// autodiff.
 template <typename T>
 T extended_torque(const Layout& L, const T* p, const model::ThesisModel<T>& base, const RowInputs& r) {
   using std::cos;
@@ -171,11 +172,6 @@ T extended_torque(const Layout& L, const T* p, const model::ThesisModel<T>& base
   }
   if (saturation) tau = model::saturate(tau, T(saturation->setting));
   return tau;
-}
-
-template <typename T>
-T extended_torque(const Layout& L, const T* p, const RowInputs& r) {
-  return extended_torque(L, p, model::ThesisModel<T>::from_params(p), r);
 }
 
 // Least squares of the extended model over the rows it describes (Ceres,

@@ -13,6 +13,7 @@ ForwardError forward_error(const ExtendedModel& m, const fit::FitData& d,
   if (!(M > 0.0) || d.size() < 3 || !(horizon_s > 0.0)) return out;
   const Layout L = layout_of(m);
   const std::vector<double> p = m.flat();
+  const auto base = model::ThesisModel<double>::from_params(p.data());
   const auto steps = static_cast<std::size_t>(std::ceil(horizon_s * d.rate_hz));
 
   // The windows' rows, gathered first: the operators run over the whole
@@ -44,7 +45,7 @@ ForwardError forward_error(const ExtendedModel& m, const fit::FitData& d,
     for (std::size_t k = 1; k <= steps; ++k) {
       RowInputs r = in[w + k - 1];
       r.theta = theta, r.omega = omega, r.alpha = 0.0;  // M·θ̈ is what is integrated
-      const double tau_model = extended_torque(L, p.data(), r);
+      const double tau_model = extended_torque(L, p.data(), base, r);
       const double accel = (torque_at(window[k - 1]) - tau_model) / M;
       const double h = d.t[window[k]] - d.t[window[k - 1]];
       // The model's damping taken implicitly (linearised backward Euler):
@@ -53,7 +54,7 @@ ForwardError forward_error(const ExtendedModel& m, const fit::FitData& d,
       RowInputs faster = r;
       const double dw = 1e-6 * std::max(1.0, std::abs(omega));
       faster.omega = omega + dw;
-      const double damping = std::max(0.0, (extended_torque(L, p.data(), faster) - tau_model) / dw);
+      const double damping = std::max(0.0, (extended_torque(L, p.data(), base, faster) - tau_model) / dw);
       const double next = omega + h * accel / (1.0 + h * damping / M);
       // Dry friction stops the knob; it does not push it back through zero.
       omega = (omega != 0.0 && next * omega < 0.0) ? 0.0 : next;
