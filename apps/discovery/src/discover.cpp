@@ -328,14 +328,19 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
     }
     if (tried.empty()) break;
     std::sort(tried.begin(), tried.end(), [](const Tried& a, const Tried& b) { return a.gain > b.gain; });
-    // The largest held-out gain decides; when it is not consistent over the
-    // blocks the search stops, even if a smaller gain would pass: a large
-    // inconsistent gain says the residual holds something no candidate
-    // describes, and a lesser candidate would only stand in for it.
+    // The largest held-out gain among the significant candidates decides: at
+    // least min_heldout_gain, consistent over the held-out blocks (t ≥ min_t)
+    // and a lower BIC. A larger gain that is not consistent (a few blocks'
+    // breakaway transients, which a spurious delay absorbs) is no evidence of
+    // a term, so it does not veto one that improves every block; it only
+    // lowers the chosen one's confidence (the runner-up below).
+    const auto significant = [&](const Tried& c) {
+      return c.gain >= opt.min_heldout_gain && c.t >= opt.min_t && c.score.bic < c.before.bic;
+    };
+    const auto chosen = std::find_if(tried.begin(), tried.end(), significant);
+    if (chosen == tried.end()) break;
+    std::rotate(tried.begin(), chosen, chosen + 1);  // chosen first, the rest by gain
     const Tried& best = tried.front();
-    const bool significant = best.gain >= opt.min_heldout_gain && best.t >= opt.min_t &&
-                             best.score.bic < best.before.bic;
-    if (!significant) break;
     const ActiveEffect& added = best.model.effects.back();
     for (CandidateScore& c : out.candidates)
       if (c.round == round && c.effect == added.id) c.kept = true;

@@ -10,11 +10,12 @@
 // blocks are held out (or a second recording is held out whole). The base model (Eq. 6, fit_knob's start and stick
 // band) is fitted on the training blocks. Every candidate effect is then
 // fitted jointly with the base parameters (Ceres, autodiff through
-// knoblab/model/effects.hpp) and scored on the held-out blocks. The best
-// candidate is kept only when it lowers the held-out RMS by at least
-// min_heldout_gain, consistently across the held-out blocks (t of the
-// per-block mean-square drop ≥ min_t) and lowers the BIC; then the search
-// repeats with it in the model, until nothing passes.
+// knoblab/model/effects.hpp) and scored on the held-out blocks. A candidate
+// passes when it lowers the held-out RMS by at least min_heldout_gain,
+// consistently across the held-out blocks (t of the per-block mean-square
+// drop ≥ min_t) and lowers the BIC; the passing one with the largest
+// held-out gain is kept, and the search repeats with it in the model, until
+// nothing passes.
 #pragma once
 
 #include <string>
