@@ -97,6 +97,7 @@ int run_discrepancy(const Args& args) {
                   f.confidence, f.where.c_str(), f.explanation.c_str());
     }
     std::printf("final model: %s\n", figures(r.final_model).c_str());
+    if (const std::string same = discovery::same_rows_sentence(r); !same.empty()) std::printf("%s\n", same.c_str());
   }
   if (auto out = args.get("json")) write_text(*out, discovery::to_json(r));
   if (auto dir = args.get("report")) {

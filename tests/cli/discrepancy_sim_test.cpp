@@ -35,6 +35,8 @@ double param(const discovery::Finding& f, const std::string& name) {
 TEST(DiscrepancySim, CleanKnobHasNoFinding) {
   const auto r = discover_with("");
   EXPECT_TRUE(r.findings.empty()) << discovery::to_json(r);
+  EXPECT_EQ(r.final_model.heldout_rows, r.base.heldout_rows);
+  EXPECT_TRUE(discovery::same_rows_sentence(r).empty());
   // Nothing added, the same forward view; under a millirad over 20 ms.
   EXPECT_EQ(r.final_model.forward_rmse_rad, r.base.forward_rmse_rad);
   EXPECT_LT(r.base.forward_rmse_rad, 1e-3);
@@ -143,6 +145,17 @@ TEST(DiscrepancySim, ALargerButInconsistentGainDoesNotVetoAConsistentOne) {
     if (c.round == 0 && c.effect == discovery::EffectId::TimeDelay) delay_gain = c.heldout_gain;
   EXPECT_GT(delay_gain, 1.0 - f.heldout_rmse_after_Nm / f.heldout_rmse_before_Nm) << discovery::to_json(r);
   EXPECT_LT(f.confidence, 0.5);
+  // The twist leaves out the rows where the knob creeps through a breakaway,
+  // which hold most of the base's residual: base → final reads far more than
+  // the finding's own gain, so the result also states both on the same rows.
+  EXPECT_LT(r.final_model.heldout_rows, r.base.heldout_rows);
+  EXPECT_GT(r.base.heldout_rmse_Nm, 1.5 * r.base_heldout_rmse_final_rows_Nm);
+  EXPECT_NEAR(r.base_heldout_rmse_final_rows_Nm, f.heldout_rmse_before_Nm, 1e-12);  // one finding
+  const std::string same = discovery::same_rows_sentence(r);
+  EXPECT_NE(same.find(std::to_string(r.final_model.heldout_rows) + " of the base's " +
+                      std::to_string(r.base.heldout_rows)),
+            std::string::npos)
+      << same;
 }
 
 TEST(DiscrepancySim, AOncePerRevolutionTorqueOnAKnobWithoutDetentsIsNotCalledDetents) {

@@ -84,6 +84,7 @@ fit::FitData subset(const fit::FitData& d, const std::vector<std::size_t>& rows)
 
 struct Score {
   double rmse_train = 0.0, rmse_held = 0.0, bic = 0.0;
+  std::size_t held_rows = 0;
   std::vector<double> block_mse;
 };
 
@@ -131,6 +132,7 @@ Score score(const Residuals& r, const Residuals& other, const Split& s) {
     cnt[s.held_block[j]] += 1.0;
   }
   out.rmse_held = nh > 0 ? std::sqrt(sh / nh) : 0.0;
+  out.held_rows = static_cast<std::size_t>(nh);
   for (std::size_t b = 0; b < s.held_blocks; ++b) {
     if (cnt[b] > 0) out.block_mse.push_back(sum[b] / cnt[b]);
   }
@@ -175,7 +177,13 @@ Params summary_params(const ExtendedModel& m) {
 }
 
 ModelSummary summary_of(const ExtendedModel& m, const Score& s) {
-  return {summary_params(m), s.rmse_train, s.rmse_held, s.bic};
+  ModelSummary out;
+  out.params = summary_params(m);
+  out.rmse_Nm = s.rmse_train;
+  out.heldout_rmse_Nm = s.rmse_held;
+  out.bic = s.bic;
+  out.heldout_rows = s.held_rows;
+  return out;
 }
 
 }  // namespace
@@ -373,6 +381,8 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
     current = score(current_res, s);
   }
   out.final_model = summary_of(m, current);
+  out.base_heldout_rmse_final_rows_Nm =
+      out.findings.empty() ? std::nan("") : score(residuals_of(base_model, s), current_res, s).rmse_held;
   append_trace(out.trace, d, s.train, detail::residuals(base_model, d, s.train),
                detail::residuals(m, d, s.train), false);
   append_trace(out.trace, h, s.held, detail::residuals(base_model, h, s.held),

@@ -103,6 +103,7 @@ SummaryText summary_text(const fit::FitData& data, const DiscrepancyResult& r,
                     fmt("%.0f", before.independence.dof) + " and " +
                     fmt("%.0f", after.independence.dof) +
                     " dof before and after). p below 0.01: not white, or not independent of ω.");
+  if (const std::string same = same_rows_sentence(r); !same.empty()) s.notes.push_back(same);
   if (r.findings.size() > 1)
     s.notes.push_back("–: only the error figures are known between findings (the residuals kept "
                       "are the base model's and the final model's).");

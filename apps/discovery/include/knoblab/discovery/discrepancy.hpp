@@ -55,6 +55,10 @@ struct ModelSummary {
   double rmse_Nm = 0.0;      // training rows
   double heldout_rmse_Nm = 0.0;
   double bic = 0.0;
+  // The held-out rows the model describes, which heldout_rmse_Nm is over: a
+  // delay moves some rows' motion into the stick band, a coupling's twist
+  // leaves out the rows where its knob creeps.
+  std::size_t heldout_rows = 0;
   // From the residual trace (whiteness.hpp): held-out rows when there are
   // enough. fit % as MATLAB's compare; p of the Ljung–Box whiteness test and
   // of the independence from ω test (NaN: too few rows).
@@ -90,6 +94,9 @@ struct DiscrepancyResult {
   std::vector<Finding> findings;  // empty: nothing is missing
   std::vector<CandidateScore> candidates;
   std::size_t train_rows = 0, heldout_rows = 0;
+  // The base model's held-out RMS on the rows the final model describes:
+  // base → final on the same rows (NaN without findings).
+  double base_heldout_rmse_final_rows_Nm = 0.0;
   bool heldout_recording = false;  // held out: another recording, not time blocks
   ResidualTrace trace;
   double seconds = 0.0;
@@ -110,5 +117,10 @@ DiscrepancyResult discover(const fit::FitData& data, const fit::FitData& heldout
 
 // {"base": …, "findings": […], "final": …} with the names issue 5 fixes.
 std::string to_json(const DiscrepancyResult& r, int indent = 2);
+
+// When the final model describes fewer held-out rows than the base, one
+// sentence saying how many and the base's held-out RMS on those rows (base
+// → final on the same rows); otherwise empty.
+std::string same_rows_sentence(const DiscrepancyResult& r);
 
 }  // namespace knoblab::discovery
