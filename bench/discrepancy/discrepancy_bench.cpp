@@ -140,7 +140,8 @@ Outcome run_case(const Case& c, std::uint64_t seed, fit::FitData* prepared = nul
     o.named = std::string(discovery::effect_name(f.effect));
     o.confidence = f.confidence;
   }
-  if (!r.findings.empty()) o.same_rows_gain = 1.0 - o.after / r.base_heldout_rmse_final_rows_Nm;
+  if (!r.findings.empty())
+    o.same_rows_gain = 1.0 - r.final_model.heldout_rmse_Nm / r.base_heldout_rmse_final_rows_Nm;
   o.before = r.base.heldout_rmse_Nm;
   o.after = r.final_model.heldout_rmse_Nm;
   o.json = discovery::to_json(r, -1);
