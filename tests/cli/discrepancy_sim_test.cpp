@@ -149,12 +149,13 @@ TEST(DiscrepancySim, ALargerButInconsistentGainDoesNotVetoAConsistentOne) {
   // which hold most of the base's residual: base → final reads far more than
   // the finding's own gain, so the result also states both on the same rows.
   EXPECT_LT(r.final_model.heldout_rows, r.base.heldout_rows);
-  EXPECT_GT(r.base.heldout_rmse_Nm, 1.5 * r.base_heldout_rmse_final_rows_Nm);
-  EXPECT_NEAR(r.base_heldout_rmse_final_rows_Nm, f.heldout_rmse_before_Nm, 1e-12);  // one finding
+  EXPECT_GT(r.base.heldout_rmse_Nm, 1.5 * r.same_rows.base_Nm);
+  ASSERT_EQ(r.findings.size(), 1u);  // then the finding's own figures are base → final
+  EXPECT_NEAR(r.same_rows.base_Nm, f.heldout_rmse_before_Nm, 1e-12);
+  EXPECT_NEAR(r.same_rows.final_Nm, f.heldout_rmse_after_Nm, 1e-12);
+  EXPECT_EQ(r.same_rows.rows, r.final_model.heldout_rows);
   const std::string same = discovery::same_rows_sentence(r);
-  EXPECT_NE(same.find(std::to_string(r.final_model.heldout_rows) + " of the base's " +
-                      std::to_string(r.base.heldout_rows)),
-            std::string::npos)
+  EXPECT_NE(same.find("on the " + std::to_string(r.same_rows.rows) + " both describe"), std::string::npos)
       << same;
 }
 

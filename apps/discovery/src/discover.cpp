@@ -381,8 +381,13 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
     current = score(current_res, s);
   }
   out.final_model = summary_of(m, current);
-  out.base_heldout_rmse_final_rows_Nm =
-      out.findings.empty() ? std::nan("") : score(residuals_of(base_model, s), current_res, s).rmse_held;
+  if (out.findings.empty()) {
+    out.same_rows = {out.heldout_rows, std::nan(""), std::nan("")};
+  } else {
+    const Residuals base_res = residuals_of(base_model, s);
+    const Score b = score(base_res, current_res, s);
+    out.same_rows = {b.held_rows, b.rmse_held, score(current_res, base_res, s).rmse_held};
+  }
   append_trace(out.trace, d, s.train, detail::residuals(base_model, d, s.train),
                detail::residuals(m, d, s.train), false);
   append_trace(out.trace, h, s.held, detail::residuals(base_model, h, s.held),

@@ -94,9 +94,12 @@ struct DiscrepancyResult {
   std::vector<Finding> findings;  // empty: nothing is missing
   std::vector<CandidateScore> candidates;
   std::size_t train_rows = 0, heldout_rows = 0;
-  // The base model's held-out RMS on the rows the final model describes:
-  // base → final on the same rows (NaN without findings).
-  double base_heldout_rmse_final_rows_Nm = 0.0;
+  // Base → final on the held-out rows both describe (NaN without findings):
+  // their count, and each model's held-out RMS there.
+  struct SameRows {
+    std::size_t rows = 0;
+    double base_Nm = 0.0, final_Nm = 0.0;
+  } same_rows;
   bool heldout_recording = false;  // held out: another recording, not time blocks
   ResidualTrace trace;
   double seconds = 0.0;
@@ -118,9 +121,9 @@ DiscrepancyResult discover(const fit::FitData& data, const fit::FitData& heldout
 // {"base": …, "findings": […], "final": …} with the names issue 5 fixes.
 std::string to_json(const DiscrepancyResult& r, int indent = 2);
 
-// When the final model describes fewer held-out rows than the base, one
-// sentence saying how many and the base's held-out RMS on those rows (base
-// → final on the same rows); otherwise empty.
+// When the base and the final model do not describe the same held-out rows,
+// one sentence giving both held-out RMS on the rows both describe;
+// otherwise empty.
 std::string same_rows_sentence(const DiscrepancyResult& r);
 
 }  // namespace knoblab::discovery
