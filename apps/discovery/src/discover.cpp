@@ -12,6 +12,7 @@
 #include "candidates.hpp"
 #include "extended_model.hpp"
 #include "forward_view.hpp"
+#include "knoblab/discovery/block_drop.hpp"
 #include "knoblab/discovery/discrepancy.hpp"
 #include "knoblab/discovery/whiteness.hpp"
 #include "knoblab/fit/knob_fit.hpp"
@@ -141,22 +142,15 @@ Score score(const Residuals& r, const Residuals& other, const Split& s) {
 
 Score score(const Residuals& r, const Split& s) { return score(r, r, s); }
 
-// t of the per-block log mean-square ratio, before over after: is the drop
-// there in most held-out blocks? Relative per block, so a few blocks with
-// large errors (reversal transients) neither carry nor sink an effect.
-double t_of_drop(const Score& before, const Score& after) {
+// Is the drop there in most held-out blocks (block_drop.hpp)?
+double drop_consistency_of(const Score& before, const Score& after) {
   const std::size_t B = std::min(before.block_mse.size(), after.block_mse.size());
   if (B < 2) return 0.0;
   std::vector<double> drop(B);
   for (std::size_t b = 0; b < B; ++b) {
     drop[b] = std::log(std::max(before.block_mse[b], 1e-300) / std::max(after.block_mse[b], 1e-300));
   }
-  const double mean = std::accumulate(drop.begin(), drop.end(), 0.0) / static_cast<double>(B);
-  double var = 0.0;
-  for (const double x : drop) var += (x - mean) * (x - mean);
-  var /= static_cast<double>(B - 1);
-  if (var <= 0.0) return mean > 0 ? 1e9 : 0.0;
-  return mean / std::sqrt(var / static_cast<double>(B));
+  return drop_consistency(drop);
 }
 
 Params summary_params(const ExtendedModel& m) {
@@ -330,7 +324,7 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
       t.score = score(r, current_res, s);
       t.before = score(current_res, r, s);
       t.gain = t.before.rmse_held > 0 ? 1.0 - t.score.rmse_held / t.before.rmse_held : 0.0;
-      t.t = t_of_drop(t.before, t.score);
+      t.t = drop_consistency_of(t.before, t.score);
       out.candidates.push_back({round, id, t.gain, t.t, false});
       tried.push_back(std::move(t));
     }

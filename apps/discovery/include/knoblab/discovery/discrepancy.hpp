@@ -12,8 +12,8 @@
 // fitted jointly with the base parameters (Ceres, autodiff through
 // knoblab/model/effects.hpp) and scored on the held-out blocks. A candidate
 // passes when it lowers the held-out RMS by at least min_heldout_gain,
-// consistently across the held-out blocks (t of the per-block mean-square
-// drop ≥ min_t) and lowers the BIC; the passing one with the largest
+// consistently across the held-out blocks (block_drop.hpp: the t or the
+// signed-rank z of the per-block mean-square drops ≥ min_t) and lowers the BIC; the passing one with the largest
 // held-out gain is kept, and the search repeats with it in the model, until
 // nothing passes.
 #pragma once
@@ -31,7 +31,7 @@ struct DiscrepancyOptions {
   std::size_t blocks = 32;          // contiguous time blocks, odd ones held out
   std::size_t max_rows = 6000;      // training / held-out rows used, evenly strided
   double min_heldout_gain = 0.02;   // held-out RMS must fall by ≥ 2 %
-  double min_t = 3.0;               // … in most held-out blocks (t of the MSE drop)
+  double min_t = 3.0;               // … in most held-out blocks (drop_consistency)
   std::size_t max_findings = 4;
   std::vector<EffectId> effects;    // candidates; empty: every implemented one
 };
@@ -47,7 +47,7 @@ struct Finding {
   double rmse_before_Nm = 0.0, rmse_after_Nm = 0.0;                  // training rows
   double heldout_rmse_before_Nm = 0.0, heldout_rmse_after_Nm = 0.0;  // held-out rows
   double bic_before = 0.0, bic_after = 0.0;
-  double t_stat = 0.0;       // held-out blocks' mean-square drop, t
+  double t_stat = 0.0;       // held-out blocks' mean-square drops: drop_consistency
 };
 
 struct ModelSummary {
