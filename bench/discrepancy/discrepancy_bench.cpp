@@ -99,10 +99,10 @@ struct Outcome {
   std::uint64_t seed = 1;
   std::string named = "none";
   double confidence = 0.0, before = 0.0, after = 0.0, seconds = 0.0;
-  // Base → final on the rows the final model describes: before/after are
-  // over the rows each describes, and a model that leaves rows undescribed
-  // (a twist's creeping knob, a delay's rows moved into the stick band)
-  // sheds their residual from `after`.
+  // Base → final on the rows both models describe (DiscrepancyResult::
+  // same_rows): before/after are over the rows each describes, and a model
+  // that leaves rows undescribed (a twist's creeping knob, a delay's rows
+  // moved into the stick band) sheds their residual from `after`.
   double same_rows_gain = 0.0;
   std::size_t samples = 0;
   std::string json;

@@ -6,7 +6,6 @@
 #include <map>
 #include <cmath>
 #include <numbers>
-#include <numeric>
 #include <span>
 
 #include "candidates.hpp"
@@ -297,7 +296,8 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
   }
   detail::fit_extended(m, d, s.train);
   const ExtendedModel base_model = m;
-  Residuals current_res = residuals_of(m, s);
+  const Residuals base_res = residuals_of(m, s);
+  Residuals current_res = base_res;
   Score current = score(current_res, s);
   out.base = summary_of(m, current);
   out.train_rows = s.train.size();
@@ -331,8 +331,8 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
     if (tried.empty()) break;
     std::sort(tried.begin(), tried.end(), [](const Tried& a, const Tried& b) { return a.gain > b.gain; });
     // The largest held-out gain among the significant candidates decides: at
-    // least min_heldout_gain, consistent over the held-out blocks (t ≥ min_t)
-    // and a lower BIC. A larger gain that is not consistent (a few blocks'
+    // least min_heldout_gain, consistent over the held-out blocks
+    // (drop_consistency ≥ min_t) and a lower BIC. A larger gain that is not consistent (a few blocks'
     // breakaway transients, which a spurious delay absorbs) is no evidence of
     // a term, so it does not veto one that improves every block; it only
     // lowers the chosen one's confidence (the runner-up below).
@@ -376,16 +376,13 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
   }
   out.final_model = summary_of(m, current);
   if (out.findings.empty()) {
-    out.same_rows = {out.heldout_rows, std::nan(""), std::nan("")};
+    out.same_rows = {out.base.heldout_rows, std::nan(""), std::nan("")};
   } else {
-    const Residuals base_res = residuals_of(base_model, s);
     const Score b = score(base_res, current_res, s);
     out.same_rows = {b.held_rows, b.rmse_held, score(current_res, base_res, s).rmse_held};
   }
-  append_trace(out.trace, d, s.train, detail::residuals(base_model, d, s.train),
-               detail::residuals(m, d, s.train), false);
-  append_trace(out.trace, h, s.held, detail::residuals(base_model, h, s.held),
-               detail::residuals(m, h, s.held), true);
+  append_trace(out.trace, d, s.train, base_res.train, current_res.train, false);
+  append_trace(out.trace, h, s.held, base_res.held, current_res.held, true);
   // The forward view on the held-out rows, windows begun in time order.
   for (auto [summary, model] : {std::pair{&out.base, &base_model}, std::pair{&out.final_model, static_cast<const ExtendedModel*>(&m)}}) {
     const detail::ForwardError fe = detail::forward_error(*model, h, s.held);

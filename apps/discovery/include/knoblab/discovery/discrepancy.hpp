@@ -13,9 +13,9 @@
 // knoblab/model/effects.hpp) and scored on the held-out blocks. A candidate
 // passes when it lowers the held-out RMS by at least min_heldout_gain,
 // consistently across the held-out blocks (block_drop.hpp: the t or the
-// signed-rank z of the per-block mean-square drops ≥ min_t) and lowers the BIC; the passing one with the largest
-// held-out gain is kept, and the search repeats with it in the model, until
-// nothing passes.
+// signed-rank z of the per-block mean-square drops ≥ min_t) and lowers the
+// BIC; the passing one with the largest held-out gain is kept, and the
+// search repeats with it in the model, until nothing passes.
 #pragma once
 
 #include <string>
