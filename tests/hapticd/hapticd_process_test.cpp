@@ -11,6 +11,8 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
+#include <optional>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -155,36 +157,69 @@ TEST(HapticdProcess, FuzzedControlInputNeverCrashesIt) {
   EXPECT_EQ(d.terminate(), 0) << d.log();
 }
 
+// Runs one capture over the protocol and returns its capture_finished event.
+// This host is not realtime: a stall of a millisecond under a loaded `ctest -j`
+// is ten overruns at 10 kHz, and the supervisor rightly latches a fault (before
+// the request, or mid-capture, ending it incomplete). The test is about the
+// protocol and the store, not the host's latency, so an *overruns-only* fault is
+// cleared and the capture asked for again (a few times at most); any other
+// fault fails the test.
+std::optional<control::Event> capture(control::Client& c, const nlohmann::json& args, int& overrun_retries) {
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    const auto faults = c.call("get_state").at("faults");
+    if (!faults.empty()) {
+      EXPECT_EQ(faults, nlohmann::json::array({"overruns"})) << "only overruns are expected on this host";
+      if (faults != nlohmann::json::array({"overruns"})) return std::nullopt;
+      c.call("clear_fault");
+      ++overrun_retries;
+      continue;
+    }
+    try {
+      c.call("start_capture", args);
+    } catch (const control::RemoteError& e) {
+      // The fault latched between get_state and start_capture: look again.
+      if (std::string(e.what()).find("fault is latched") == std::string::npos) throw;
+      continue;
+    }
+    auto ev = c.wait_event(std::chrono::seconds(10));
+    if (!ev || ev->data.value("complete", false)) return ev;
+    ++overrun_retries;  // ended early by a fault; the loop above checks which
+  }
+  return std::nullopt;
+}
+
 // A capture asked for over the protocol lands in the store, complete.
 TEST(HapticdProcess, CaptureOverTheProtocolLandsInTheStore) {
   Hapticd d({"--rate", "10000"});
   control::Client c(d.socket(), std::chrono::seconds(5));
   c.hello();
   c.call("subscribe", {{"events", {"capture_finished"}}});
-  const auto r = c.call("start_capture", {{"seconds", 1.0},
-                                          {"knob", "moderate-detents"},
-                                          {"swept_sine", {{"a", 0}, {"b", 1.5}, {"c", 1.0}, {"d", 3}}}});
-  EXPECT_EQ(r.at("samples"), 10000);
-  const auto ev = c.wait_event(std::chrono::seconds(10));
+  int retries = 0;
+  const auto ev = capture(c, {{"seconds", 1.0}, {"knob", "moderate-detents"},
+                              {"swept_sine", {{"a", 0}, {"b", 1.5}, {"c", 1.0}, {"d", 3}}}}, retries);
   ASSERT_TRUE(ev) << d.log();
   EXPECT_EQ(ev->name, "capture_finished");
   EXPECT_EQ(ev->data.at("samples"), 10000);
   // The open-loop torque stimulus, too.
-  c.call("start_capture", {{"seconds", 0.5},
-                           {"knob", "moderate-detents"},
-                           {"torque_sweep", {{"a", 2}, {"b", 10}, {"c", 0.02}, {"d", 2}}}});
-  const auto ev2 = c.wait_event(std::chrono::seconds(10));
+  const auto ev2 = capture(c, {{"seconds", 0.5}, {"knob", "moderate-detents"},
+                               {"torque_sweep", {{"a", 2}, {"b", 10}, {"c", 0.02}, {"d", 2}}}}, retries);
   ASSERT_TRUE(ev2) << d.log();
   EXPECT_EQ(ev2->data.at("samples"), 5000);
   EXPECT_EQ(d.terminate(), 0) << d.log();
+  if (retries) std::printf("note: %d capture(s) re-asked after an overrun fault (host latency)\n", retries);
+  // Captures a fault cut short are kept, marked incomplete; the two that ran
+  // to the end are complete and hold every sample.
   store::Store s = store::Store::open(d.db());
-  const auto caps = s.list_captures();
-  ASSERT_EQ(caps.size(), 2u);
-  EXPECT_EQ(caps[0].status, "complete");
-  EXPECT_EQ(caps[0].sample_count, 10000);
-  EXPECT_NE(caps[0].stimulus.find("swept_sine"), std::string::npos);
-  EXPECT_NE(caps[1].stimulus.find("torque_sweep"), std::string::npos);
-  EXPECT_EQ(caps[1].sample_count, 5000);
+  std::vector<store::CaptureInfo> complete;
+  for (const auto& cap : s.list_captures()) {
+    if (cap.status == "complete") complete.push_back(cap);
+    else EXPECT_EQ(cap.status, "incomplete");
+  }
+  ASSERT_EQ(complete.size(), 2u);
+  EXPECT_EQ(complete[0].sample_count, 10000);
+  EXPECT_NE(complete[0].stimulus.find("swept_sine"), std::string::npos);
+  EXPECT_NE(complete[1].stimulus.find("torque_sweep"), std::string::npos);
+  EXPECT_EQ(complete[1].sample_count, 5000);
 }
 
 }  // namespace
