@@ -16,7 +16,7 @@ namespace knoblab::cli {
 const CommandSpec kDiscrepancySpec{
     "discrepancy",
     "--input FILE.csv | --capture ID --db FILE [--heldout FILE.csv | --heldout-capture ID]\n"
-    "  [--json OUT] [--report DIR] [--effects a,b,…] [--max-findings N]",
+    "  [--json OUT] [--report DIR] [--effects a,b,…] [--max-findings N] [--min-gain PCT]",
     "Find what the thesis model leaves out of a capture: locate the structured residual,\n"
     "fit candidate effects (stribeck, backlash, detent_shape, periodic_torque, …) with the\n"
     "model, keep those that lower the error on held-out time blocks, and say so.",
@@ -26,6 +26,7 @@ const CommandSpec kDiscrepancySpec{
      {"heldout", true, "another recording of the knob (CSV), held out whole instead of time blocks"},
      {"heldout-capture", true, "… or its capture id in the store"},
      {"max-findings", true, "stop after N findings (default 4)"},
+     {"min-gain", true, "held-out RMS cut, in %, the findings must earn together to be reported (default 20)"},
      {"json", true, "write the result as JSON (docs/discrepancy.md); '-' for stdout"},
      {"report", true, "directory for the report: residual plots before/after, whiteness, summary"},
      {"effects", true, "comma-separated candidate effect ids (default: all implemented)"},
@@ -73,6 +74,11 @@ int run_discrepancy(const Args& args) {
   const long long max_findings = args.integer("max-findings", 4);
   if (max_findings < 0 || max_findings > 16) throw UsageError("--max-findings must be 0 … 16");
   opt.max_findings = static_cast<std::size_t>(max_findings);
+  if (auto g = args.get("min-gain")) {
+    const double pct = args.number("min-gain", 20.0);
+    if (!(pct >= 0.0 && pct < 100.0)) throw UsageError("--min-gain must be 0 … 100 (percent), not " + *g);
+    opt.min_reported_gain = pct / 100.0;
+  }
   if (args.get("report") == std::optional<std::string>("")) throw UsageError("--report needs a directory");
 
   const CaptureInput in = read_capture_input(args);
@@ -91,7 +97,18 @@ int run_discrepancy(const Args& args) {
       std::printf("irregular time stamps: resampled onto their median interval (%.4g Hz)\n", data.rate_hz);
     }
     std::printf("base model: %s\n", figures(r.base).c_str());
-    if (r.findings.empty()) std::printf("no finding: nothing from the effect library improves the held-out error\n");
+    if (r.findings.empty() && r.tentative.empty())
+      std::printf("no finding: nothing from the effect library improves the held-out error\n");
+    if (!r.tentative.empty()) {
+      std::printf("no finding: what the library adds cuts the held-out RMS only %.4g → %.4g mN·m (%.0f %%), "
+                  "under the %.0f %% a finding must earn (--min-gain); tentative:\n",
+                  r.base.heldout_rmse_Nm * 1e3, r.tentative_heldout_rmse_Nm * 1e3,
+                  100.0 * (1.0 - r.tentative_heldout_rmse_Nm / r.base.heldout_rmse_Nm),
+                  100.0 * r.min_reported_gain);
+      for (const discovery::Finding& f : r.tentative)
+        std::printf("  (%s, %s): %s\n", std::string(discovery::effect_name(f.effect)).c_str(), f.where.c_str(),
+                    f.explanation.c_str());
+    }
     for (const discovery::Finding& f : r.findings) {
       std::printf("- %s (confidence %.2f, %s): %s\n", std::string(discovery::effect_name(f.effect)).c_str(),
                   f.confidence, f.where.c_str(), f.explanation.c_str());

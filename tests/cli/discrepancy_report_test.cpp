@@ -44,6 +44,25 @@ TEST(DiscrepancyReportCli, WritesTheReportAndPrintsTheFigures) {
     EXPECT_NE(j.find(key), std::string::npos) << key;
 }
 
+TEST(DiscrepancyReportCli, MinGainAboveTheFindingsGainLeavesThemTentative) {
+  ScratchDir dir;
+  const auto csv = dir / "cogged.csv";
+  ASSERT_EQ(run_knoblab({"simulate", "--knob", "moderate-detents", "--seconds", "8", "--effects",
+                         "periodic_torque:A=0.001,P=0.0578,S=0.3", "--out", csv.string()}).exit_code, 0);
+  const auto json = dir / "r.json";
+  const RunResult r = run_knoblab({"discrepancy", "--input", csv.string(), "--min-gain", "99", "--json",
+                                   json.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("under the 99 % a finding must earn"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("  (periodic_torque, "), std::string::npos) << r.out;
+  const std::string j = read_file(json);
+  EXPECT_NE(j.find("\"findings\": []"), std::string::npos) << j;
+  EXPECT_NE(j.find("\"tentative_heldout_rmse_Nm\""), std::string::npos) << j;
+  const RunResult bad = run_knoblab({"discrepancy", "--input", csv.string(), "--min-gain", "120"});
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("--min-gain"), std::string::npos) << bad.err;
+}
+
 TEST(DiscrepancyReportCli, UnmakeableReportDirectoryIsAnErrorNamingIt) {
   ScratchDir dir;
   const auto csv = dir / "clean.csv";

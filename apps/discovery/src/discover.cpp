@@ -253,6 +253,7 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
   if (d.size() < 200 || h.size() < 200) throw fit::FitDataError("too few samples for discrepancy discovery");
   DiscrepancyResult out;
   out.heldout_recording = &d != &h;
+  out.min_reported_gain = opt.min_reported_gain;
 
   // Base model on the training blocks, as the characterization fits it: its
   // detent search, its stick band (inside which the sliding law does not
@@ -374,6 +375,18 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
     current_res = residuals_of(m, s);
     current = score(current_res, s);
   }
+  // Below the reporting bar the terms found stay tentative and the final
+  // model is the base (one-line rule: discrepancy.hpp, min_reported_gain).
+  if (!out.findings.empty() && current.rmse_held > (1.0 - opt.min_reported_gain) * out.base.heldout_rmse_Nm) {
+    out.tentative = std::move(out.findings);
+    out.tentative_heldout_rmse_Nm = current.rmse_held;
+    out.findings.clear();
+    for (CandidateScore& c : out.candidates) c.kept = false;
+    m = base_model;
+    current_res = base_res;
+    current = score(current_res, s);
+  }
+  if (out.tentative.empty()) out.tentative_heldout_rmse_Nm = std::nan("");
   out.final_model = summary_of(m, current);
   if (out.findings.empty()) {
     out.same_rows = {out.base.heldout_rows, std::nan(""), std::nan("")};

@@ -131,7 +131,9 @@ Page residual_page(const Inputs& in, const std::vector<double>& x, const std::st
                                        "Before: base model (Eq. 6) — " + figures(r.base), xlabel,
                                        limit));
   const std::string final_name =
-      r.findings.empty() ? "= base, nothing is missing" : "+ " + added_effects(r);
+      !r.findings.empty()    ? "+ " + added_effects(r)
+      : r.tentative.empty() ? "= base, nothing is missing"
+                            : "= base, what was found is under the reporting bar";
   page.panels.push_back(residual_panel(in, x, r.trace.after, nullptr,
                                        "After: " + final_name + " — " + figures(r.final_model),
                                        xlabel, limit));
@@ -198,7 +200,7 @@ Page summary_page(const Inputs& in, const detail::SummaryText& s) {
   Page page;
   page.title = titled(in, "what the thesis model leaves out");
   page.subtitle = in.r.findings.empty()
-                      ? "no finding"
+                      ? (in.r.tentative.empty() ? "no finding" : "no finding (tentative terms under the bar)")
                       : std::to_string(in.r.findings.size()) + " finding" +
                             (in.r.findings.size() > 1 ? "s" : "") + ": " + added_effects(in.r);
   for (const auto& row : s.table) {

@@ -72,10 +72,20 @@ SummaryText summary_text(const fit::FitData& data, const DiscrepancyResult& r,
 
   for (std::size_t k = 0; k < r.findings.size(); ++k)
     s.findings.push_back(std::to_string(k + 1) + ". " + r.findings[k].explanation);
-  if (r.findings.empty())
+  if (r.findings.empty() && r.tentative.empty())
     s.findings.push_back(
         "Nothing is missing: no effect from the library lowered the held-out error, so the "
         "thesis model (Eq. 6) describes this recording as well as the library can.");
+  if (!r.tentative.empty()) {
+    const double gain = 1.0 - r.tentative_heldout_rmse_Nm / r.base.heldout_rmse_Nm;
+    s.findings.push_back("Nothing is reported: the terms below lower the held-out RMS consistently, but only by " +
+                         fmt("%.0f", 100.0 * gain) + " % together (" + fmt("%.4g", r.base.heldout_rmse_Nm * kmNm) +
+                         " → " + fmt("%.4g", r.tentative_heldout_rmse_Nm * kmNm) + " mN·m), under the " +
+                         fmt("%.0f", 100.0 * r.min_reported_gain) +
+                         " % a finding must earn. They are tentative; the final model is the base:");
+    for (std::size_t k = 0; k < r.tentative.size(); ++k)
+      s.findings.push_back("(" + std::to_string(k + 1) + ") " + r.tentative[k].explanation);
+  }
 
   s.notes.push_back(
       "Forward view: the model driven by the measured torque over 20 ms windows begun from the "

@@ -17,6 +17,25 @@ nlohmann::ordered_json params_json(const Params& p) {
   return o;
 }
 
+nlohmann::ordered_json findings_json(const std::vector<Finding>& findings) {
+  nlohmann::ordered_json a = nlohmann::ordered_json::array();
+  for (const Finding& f : findings) {
+    a.push_back({{"effect", std::string(effect_name(f.effect))},
+                 {"confidence", f.confidence},
+                 {"where", f.where},
+                 {"explanation", f.explanation},
+                 {"params", params_json(f.params)},
+                 {"rmse_before_Nm", f.rmse_before_Nm},
+                 {"rmse_after_Nm", f.rmse_after_Nm},
+                 {"heldout_rmse_before_Nm", f.heldout_rmse_before_Nm},
+                 {"heldout_rmse_after_Nm", f.heldout_rmse_after_Nm},
+                 {"bic_before", f.bic_before},
+                 {"bic_after", f.bic_after},
+                 {"heldout_t", f.t_stat}});
+  }
+  return a;
+}
+
 }  // namespace
 
 std::string to_json(const DiscrepancyResult& r, int indent) {
@@ -30,21 +49,11 @@ std::string to_json(const DiscrepancyResult& r, int indent) {
                {"whiteness_p", r.base.whiteness_p},
                {"independence_p", r.base.independence_p},
                {"forward_rmse_rad", r.base.forward_rmse_rad}};
-  j["findings"] = nlohmann::ordered_json::array();
-  for (const Finding& f : r.findings) {
-    j["findings"].push_back({{"effect", std::string(effect_name(f.effect))},
-                             {"confidence", f.confidence},
-                             {"where", f.where},
-                             {"explanation", f.explanation},
-                             {"params", params_json(f.params)},
-                             {"rmse_before_Nm", f.rmse_before_Nm},
-                             {"rmse_after_Nm", f.rmse_after_Nm},
-                             {"heldout_rmse_before_Nm", f.heldout_rmse_before_Nm},
-                             {"heldout_rmse_after_Nm", f.heldout_rmse_after_Nm},
-                             {"bic_before", f.bic_before},
-                             {"bic_after", f.bic_after},
-                             {"heldout_t", f.t_stat}});
-  }
+  j["findings"] = findings_json(r.findings);
+  // Outside issue 5's names: found, but under the reporting bar (not in final).
+  j["tentative_findings"] = findings_json(r.tentative);
+  if (!r.tentative.empty()) j["tentative_heldout_rmse_Nm"] = r.tentative_heldout_rmse_Nm;
+  j["min_reported_gain"] = r.min_reported_gain;
   j["final"] = {{"params", params_json(r.final_model.params)},
                 {"rmse_Nm", r.final_model.rmse_Nm},
                 {"heldout_rmse_Nm", r.final_model.heldout_rmse_Nm},

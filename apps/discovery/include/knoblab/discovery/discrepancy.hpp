@@ -15,7 +15,9 @@
 // consistently across the held-out blocks (block_drop.hpp: the t or the
 // signed-rank z of the per-block mean-square drops ≥ min_t) and lowers the
 // BIC; the passing one with the largest held-out gain is kept, and the
-// search repeats with it in the model, until nothing passes.
+// search repeats with it in the model, until nothing passes. The findings
+// are reported only when together they cut the held-out RMS by at least
+// min_reported_gain; below that bar they are tentative: shown, not adopted.
 #pragma once
 
 #include <string>
@@ -32,6 +34,11 @@ struct DiscrepancyOptions {
   std::size_t max_rows = 6000;      // training / held-out rows used, evenly strided
   double min_heldout_gain = 0.02;   // held-out RMS must fall by ≥ 2 %
   double min_t = 3.0;               // … in most held-out blocks (drop_consistency)
+  // A finding is a claim that the model left physics out; it is made only
+  // when the terms found cut the held-out RMS (base → final) by ≥ 20 %. A
+  // smaller, consistent improvement is real evidence but too weak to act on:
+  // it is reported as tentative and the final model stays the base.
+  double min_reported_gain = 0.20;
   std::size_t max_findings = 4;
   std::vector<EffectId> effects;    // candidates; empty: every implemented one
 };
@@ -92,6 +99,11 @@ struct ResidualTrace {
 struct DiscrepancyResult {
   ModelSummary base, final_model;
   std::vector<Finding> findings;  // empty: nothing is missing
+  // Found, but together under min_reported_gain: not in the final model;
+  // the held-out RMS with them added (NaN when there are none).
+  std::vector<Finding> tentative;
+  double tentative_heldout_rmse_Nm = 0.0;
+  double min_reported_gain = 0.0;  // the bar this result was judged by
   std::vector<CandidateScore> candidates;
   std::size_t train_rows = 0, heldout_rows = 0;
   // Base → final on the held-out rows both describe (NaN without findings):
