@@ -86,5 +86,31 @@ TEST(OdriveDiscrepancy, WithAntiCoggingTheCurrentCarriesTheSameMapAndThe36PerRev
   EXPECT_LT(r["final"]["heldout_rmse_Nm"].get<double>(), 0.5 * r["base"]["heldout_rmse_Nm"].get<double>());
 }
 
+TEST(OdriveDiscrepancy, OneRecordingAloneIsHeldOutInBlocksFineEnoughToInterleaveItsAngles) {
+  // One slow revolution passes each angle once: held out in 32 time blocks,
+  // the training would never see 16 stretches of angle, and its angles,
+  // sampled 16 times per revolution, alias the cogging (28/rev reads as 12).
+  // Discovery cuts such a recording finer (JSON "blocks") and the cogging
+  // is found without a second recording.
+  REQUIRE_DATASET();
+  ScratchDir dir;
+  const RunResult c = run_knoblab(odrive_args(odrive_dir() / "slow2" / "nocomp_0.mat", dir / "n0.csv"));
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  const RunResult r = run_knoblab({"discrepancy", "--input", (dir / "n0.csv").string(), "--max-findings", "8",
+                                   "--json", (dir / "r.json").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream f(dir / "r.json");
+  const nlohmann::json j = nlohmann::json::parse(f);
+  EXPECT_GT(j["blocks"].get<int>(), 32);
+  bool shape = false, twelve = false;
+  for (const auto& finding : j["findings"]) {
+    shape = shape || finding["effect"] == "detent_shape";
+    twelve = twelve || (finding["effect"] == "periodic_torque" &&
+                        std::abs(finding["params"]["cycles_per_rev"].get<double>() - 12.0) < 0.3);
+  }
+  EXPECT_TRUE(shape && twelve) << r.out;
+  EXPECT_LT(j["final"]["heldout_rmse_Nm"].get<double>(), 0.8 * j["base"]["heldout_rmse_Nm"].get<double>());
+}
+
 }  // namespace
 }  // namespace knoblab::test

@@ -42,6 +42,8 @@ TEST(Discover, CleanDataHasNoFinding) {
     const DiscrepancyResult r = discover(with_effect(seed, nullptr));
     EXPECT_TRUE(r.findings.empty()) << "seed " << seed << ": " << to_json(r);
     EXPECT_NEAR(r.final_model.heldout_rmse_Nm, r.base.heldout_rmse_Nm, 1e-12);
+    // A sweep that passes its angles again and again keeps the 32 blocks.
+    EXPECT_EQ(r.blocks, 32u);
   }
 }
 
@@ -108,8 +110,8 @@ TEST(Discover, AConsistentGainUnderTheBarIsTentative) {
   // The cogging of NamesASecondPeriodicTorqueAndItsPeriod: found and
   // consistent, but it cuts the held-out RMS by less than 20 %.
   const model::Detents<double> cogging{0.8, 1.0 / 11.3, 0.5};
-  const fit::FitData d = with_effect(4, [&](const fit::FitData& d, std::size_t i) {
-    return cogging.torque(d.theta[i]);
+  const fit::FitData d = with_effect(4, [&](const fit::FitData& x, std::size_t i) {
+    return cogging.torque(x.theta[i]);
   });
   const DiscrepancyResult r = discover(d);
   EXPECT_TRUE(r.findings.empty()) << to_json(r);

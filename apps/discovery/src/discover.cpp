@@ -30,14 +30,50 @@ struct Split {
   std::vector<std::size_t> train, held;     // rows of train_data / held_data
   std::vector<std::size_t> held_block;  // per held row: its block (0 … B/2 − 1)
   std::size_t held_blocks = 0;
+  std::size_t blocks = 0;  // time blocks of the recording (0: another recording is held out)
 };
 
 // Contiguous time blocks; even ones train, odd ones are held out. With a
 // held-out recording, all of `d` trains and `h`'s B/2 blocks are held out.
 // Each side strided evenly down to max_rows.
+// The share of the held-out rows (odd blocks of B) with at least five
+// training rows within 1/256 of the position range: 1 for a sweep that
+// passes its angles again and again, about 0.3 for one slow revolution.
+double position_coverage(const fit::FitData& d, const std::vector<char>& usable, std::size_t B) {
+  std::vector<double> train, held;
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    if (!usable[i]) continue;
+    ((i * B / d.size()) % 2 == 0 ? train : held).push_back(d.theta[i]);
+  }
+  if (train.size() < 2 || held.empty()) return 1.0;
+  std::sort(train.begin(), train.end());
+  const double delta = (train.back() - train.front()) / 256.0;
+  const double near_enough = 5.0;
+  std::size_t covered = 0;
+  for (const double th : held) {
+    const auto lo = std::lower_bound(train.begin(), train.end(), th - delta);
+    const auto hi = std::upper_bound(train.begin(), train.end(), th + delta);
+    covered += static_cast<double>(hi - lo) >= near_enough ? 1 : 0;
+  }
+  return static_cast<double>(covered) / static_cast<double>(held.size());
+}
+
+// Time blocks must not hold out angles the training never saw. A recording
+// that passes each position once (one slow revolution) held out in 32
+// blocks leaves 16 stretches of angle unseen, and its training rows sample
+// the angle in a 16-per-range pattern that aliases periodic torques (a
+// 28/rev cogging harmonic reads as 12). The blocks are doubled, up to 256
+// and at least 16 rows each, until nine in ten held-out rows have training
+// rows close by in position.
+std::size_t blocks_for(const fit::FitData& d, const std::vector<char>& usable, std::size_t B) {
+  while (position_coverage(d, usable, B) < 0.9 && 2 * B <= 256 && d.size() / (2 * B) >= 16) B *= 2;
+  return B;
+}
+
 Split split_rows(const fit::FitData& d, const std::vector<char>& usable_d, const fit::FitData& h,
                  const std::vector<char>& usable_h, const DiscrepancyOptions& opt) {
-  const std::size_t B = std::max<std::size_t>(4, opt.blocks);
+  const std::size_t B0 = std::max<std::size_t>(4, opt.blocks);
+  const std::size_t B = &d == &h ? blocks_for(d, usable_d, B0) : B0;
   const bool same = &d == &h;
   std::vector<std::size_t> train, held, held_block;
   for (std::size_t i = 0; i < d.size(); ++i) {
@@ -59,6 +95,7 @@ Split split_rows(const fit::FitData& d, const std::vector<char>& usable_d, const
   s.train_data = &d;
   s.held_data = &h;
   s.held_blocks = B / 2;
+  s.blocks = same ? B : 0;
   const std::size_t st = std::max<std::size_t>(1, train.size() / opt.max_rows);
   for (std::size_t j = 0; j < train.size(); j += st) s.train.push_back(train[j]);
   const std::size_t sh = std::max<std::size_t>(1, held.size() / opt.max_rows);
@@ -302,6 +339,7 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
   Score current = score(current_res, s);
   out.base = summary_of(m, current);
   out.train_rows = s.train.size();
+  out.blocks = s.blocks;
   out.heldout_rows = s.held.size();
 
   const std::vector<EffectId> pool = opt.effects.empty() ? implemented_effects() : opt.effects;

@@ -106,6 +106,10 @@ struct DiscrepancyResult {
   double min_reported_gain = 0.0;  // the bar this result was judged by
   std::vector<CandidateScore> candidates;
   std::size_t train_rows = 0, heldout_rows = 0;
+  // Time blocks the recording was cut into: opt.blocks, or more for a
+  // recording that passes each angle once (discover.cpp, blocks_for); 0 with
+  // a held-out recording.
+  std::size_t blocks = 0;
   // Base → final on the held-out rows both describe (NaN without findings):
   // their count, and each model's held-out RMS there.
   struct SameRows {
