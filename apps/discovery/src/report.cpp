@@ -133,7 +133,7 @@ Page residual_page(const Inputs& in, const std::vector<double>& x, const std::st
   const std::string final_name =
       !r.findings.empty()    ? "+ " + added_effects(r)
       : r.tentative.empty() ? "= base, nothing is missing"
-                            : "= base, what was found is under the reporting bar";
+                            : "= base, tentative only";
   page.panels.push_back(residual_panel(in, x, r.trace.after, nullptr,
                                        "After: " + final_name + " — " + figures(r.final_model),
                                        xlabel, limit));
