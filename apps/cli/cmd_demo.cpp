@@ -144,7 +144,12 @@ int run_demo(const Args& args) {
       const SimulationResult ls = simulate(longer, &db);
       const discovery::DiscrepancyResult d = discovery::discover(fit::prepare(ls.capture));
       std::string line = std::string(k.id) + " (capture " + std::to_string(ls.capture_id.value_or(0)) + "):";
-      if (d.findings.empty()) line += " nothing missing";
+      if (d.findings.empty() && d.tentative.empty()) line += " nothing missing";
+      if (!d.tentative.empty()) {
+        line += " nothing reported (under the 20 % bar, tentative:";
+        for (const discovery::Finding& f : d.tentative) line += " " + std::string(discovery::effect_name(f.effect));
+        line += ")";
+      }
       for (const discovery::Finding& f : d.findings) {
         line += "\n    " + std::string(discovery::effect_name(f.effect)) + " — " + f.explanation;
       }
