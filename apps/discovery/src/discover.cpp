@@ -30,30 +30,24 @@ struct Split {
   std::vector<std::size_t> train, held;     // rows of train_data / held_data
   std::vector<std::size_t> held_block;  // per held row: its block (0 … B/2 − 1)
   std::size_t held_blocks = 0;
-  std::size_t blocks = 0;  // time blocks of the recording (0: another recording is held out)
 };
 
-// Contiguous time blocks; even ones train, odd ones are held out. With a
-// held-out recording, all of `d` trains and `h`'s B/2 blocks are held out.
-// Each side strided evenly down to max_rows.
 // The share of the held-out rows (odd blocks of B) with at least five
 // training rows within 1/256 of the position range: 1 for a sweep that
 // passes its angles again and again, about 0.3 for one slow revolution.
-double position_coverage(const fit::FitData& d, const std::vector<char>& usable, std::size_t B) {
+double position_coverage(const fit::FitData& d, std::size_t B) {
   std::vector<double> train, held;
   for (std::size_t i = 0; i < d.size(); ++i) {
-    if (!usable[i]) continue;
     ((i * B / d.size()) % 2 == 0 ? train : held).push_back(d.theta[i]);
   }
   if (train.size() < 2 || held.empty()) return 1.0;
   std::sort(train.begin(), train.end());
   const double delta = (train.back() - train.front()) / 256.0;
-  const double near_enough = 5.0;
   std::size_t covered = 0;
   for (const double th : held) {
     const auto lo = std::lower_bound(train.begin(), train.end(), th - delta);
     const auto hi = std::upper_bound(train.begin(), train.end(), th + delta);
-    covered += static_cast<double>(hi - lo) >= near_enough ? 1 : 0;
+    covered += hi - lo >= 5 ? 1 : 0;
   }
   return static_cast<double>(covered) / static_cast<double>(held.size());
 }
@@ -65,15 +59,16 @@ double position_coverage(const fit::FitData& d, const std::vector<char>& usable,
 // 28/rev cogging harmonic reads as 12). The blocks are doubled, up to 256
 // and at least 16 rows each, until nine in ten held-out rows have training
 // rows close by in position.
-std::size_t blocks_for(const fit::FitData& d, const std::vector<char>& usable, std::size_t B) {
-  while (position_coverage(d, usable, B) < 0.9 && 2 * B <= 256 && d.size() / (2 * B) >= 16) B *= 2;
+std::size_t blocks_for(const fit::FitData& d, std::size_t B) {
+  while (position_coverage(d, B) < 0.9 && 2 * B <= 256 && d.size() / (2 * B) >= 16) B *= 2;
   return B;
 }
 
+// Contiguous time blocks, B of them; even ones train, odd ones are held out.
+// With a held-out recording, all of `d` trains and `h`'s B/2 blocks are held
+// out. Each side strided evenly down to max_rows.
 Split split_rows(const fit::FitData& d, const std::vector<char>& usable_d, const fit::FitData& h,
-                 const std::vector<char>& usable_h, const DiscrepancyOptions& opt) {
-  const std::size_t B0 = std::max<std::size_t>(4, opt.blocks);
-  const std::size_t B = &d == &h ? blocks_for(d, usable_d, B0) : B0;
+                 const std::vector<char>& usable_h, std::size_t B, const DiscrepancyOptions& opt) {
   const bool same = &d == &h;
   std::vector<std::size_t> train, held, held_block;
   for (std::size_t i = 0; i < d.size(); ++i) {
@@ -95,7 +90,6 @@ Split split_rows(const fit::FitData& d, const std::vector<char>& usable_d, const
   s.train_data = &d;
   s.held_data = &h;
   s.held_blocks = B / 2;
-  s.blocks = same ? B : 0;
   const std::size_t st = std::max<std::size_t>(1, train.size() / opt.max_rows);
   for (std::size_t j = 0; j < train.size(); j += st) s.train.push_back(train[j]);
   const std::size_t sh = std::max<std::size_t>(1, held.size() / opt.max_rows);
@@ -296,7 +290,12 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
   // detent search, its stick band (inside which the sliding law does not
   // hold, so those samples are left out of the discovery too).
   const std::vector<char> all_d(d.size(), 1), all_h(h.size(), 1);
-  Split s = split_rows(d, all_d, h, all_h, opt);
+  // One block count for both splits below, so that the base is never fitted
+  // on rows the second split holds out.
+  const std::size_t B0 = std::max<std::size_t>(4, opt.blocks);
+  const std::size_t B = out.heldout_recording ? B0 : blocks_for(d, B0);
+  out.blocks = out.heldout_recording ? 0 : B;
+  Split s = split_rows(d, all_d, h, all_h, B, opt);
   const fit::FitResult base_fit = fit::fit_knob(subset(d, s.train));
   // Near-stuck samples: inside the fitted stick band, and in any case below
   // 2 % of the brisk speed (an effect the base lacks can hide the band from
@@ -304,7 +303,7 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
   const double slow = slow_speed(d, base_fit);
   const std::vector<char> usable_d = faster_than(d, slow);
   s = split_rows(d, usable_d, h,
-                 out.heldout_recording ? within_training_speeds(d, usable_d, h, slow) : usable_d, opt);
+                 out.heldout_recording ? within_training_speeds(d, usable_d, h, slow) : usable_d, B, opt);
   if (s.held.size() < 100) {
     throw fit::FitDataError(out.heldout_recording
                                 ? "the held-out recording has " + std::to_string(s.held.size()) +
@@ -335,11 +334,11 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
   detail::fit_extended(m, d, s.train);
   const ExtendedModel base_model = m;
   const Residuals base_res = residuals_of(m, s);
+  const Score base_score = score(base_res, s);
   Residuals current_res = base_res;
-  Score current = score(current_res, s);
+  Score current = base_score;
   out.base = summary_of(m, current);
   out.train_rows = s.train.size();
-  out.blocks = s.blocks;
   out.heldout_rows = s.held.size();
 
   const std::vector<EffectId> pool = opt.effects.empty() ? implemented_effects() : opt.effects;
@@ -422,9 +421,8 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
     for (CandidateScore& c : out.candidates) c.kept = false;
     m = base_model;
     current_res = base_res;
-    current = score(current_res, s);
+    current = base_score;
   }
-  if (out.tentative.empty()) out.tentative_heldout_rmse_Nm = std::nan("");
   out.final_model = summary_of(m, current);
   if (out.findings.empty()) {
     out.same_rows = {out.base.heldout_rows, std::nan(""), std::nan("")};

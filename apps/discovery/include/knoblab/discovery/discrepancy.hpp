@@ -20,6 +20,7 @@
 // min_reported_gain; below that bar they are tentative: shown, not adopted.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -102,7 +103,7 @@ struct DiscrepancyResult {
   // Found, but together under min_reported_gain: not in the final model;
   // the held-out RMS with them added (NaN when there are none).
   std::vector<Finding> tentative;
-  double tentative_heldout_rmse_Nm = 0.0;
+  double tentative_heldout_rmse_Nm = std::numeric_limits<double>::quiet_NaN();
   double min_reported_gain = 0.0;  // the bar this result was judged by
   std::vector<CandidateScore> candidates;
   std::size_t train_rows = 0, heldout_rows = 0;
