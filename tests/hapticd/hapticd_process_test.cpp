@@ -157,14 +157,16 @@ TEST(HapticdProcess, FuzzedControlInputNeverCrashesIt) {
   EXPECT_EQ(d.terminate(), 0) << d.log();
 }
 
-// Runs one capture over the protocol and returns its capture_finished event.
-// This host is not realtime: a stall of a millisecond under a loaded `ctest -j`
-// is ten overruns at 10 kHz, and the supervisor rightly latches a fault (before
+// Runs one capture over the protocol, checks that the reply promises
+// `samples`, and returns its capture_finished event. This host is not
+// realtime: eleven cycles in a row whose work outlasts its 100 µs period under
+// a loaded `ctest -j` are too many overruns at 10 kHz, and the supervisor rightly latches a fault (before
 // the request, or mid-capture, ending it incomplete). The test is about the
 // protocol and the store, not the host's latency, so an *overruns-only* fault is
 // cleared and the capture asked for again (a few times at most); any other
 // fault fails the test.
-std::optional<control::Event> capture(control::Client& c, const nlohmann::json& args, int& overrun_retries) {
+std::optional<control::Event> capture(control::Client& c, const nlohmann::json& args, int samples,
+                                      int& overrun_retries) {
   for (int attempt = 0; attempt < 4; ++attempt) {
     const auto faults = c.call("get_state").at("faults");
     if (!faults.empty()) {
@@ -175,7 +177,7 @@ std::optional<control::Event> capture(control::Client& c, const nlohmann::json& 
       continue;
     }
     try {
-      c.call("start_capture", args);
+      EXPECT_EQ(c.call("start_capture", args).at("samples"), samples);
     } catch (const control::RemoteError& e) {
       // The fault latched between get_state and start_capture: look again.
       if (std::string(e.what()).find("fault is latched") == std::string::npos) throw;
@@ -196,13 +198,13 @@ TEST(HapticdProcess, CaptureOverTheProtocolLandsInTheStore) {
   c.call("subscribe", {{"events", {"capture_finished"}}});
   int retries = 0;
   const auto ev = capture(c, {{"seconds", 1.0}, {"knob", "moderate-detents"},
-                              {"swept_sine", {{"a", 0}, {"b", 1.5}, {"c", 1.0}, {"d", 3}}}}, retries);
+                              {"swept_sine", {{"a", 0}, {"b", 1.5}, {"c", 1.0}, {"d", 3}}}}, 10000, retries);
   ASSERT_TRUE(ev) << d.log();
   EXPECT_EQ(ev->name, "capture_finished");
   EXPECT_EQ(ev->data.at("samples"), 10000);
   // The open-loop torque stimulus, too.
   const auto ev2 = capture(c, {{"seconds", 0.5}, {"knob", "moderate-detents"},
-                               {"torque_sweep", {{"a", 2}, {"b", 10}, {"c", 0.02}, {"d", 2}}}}, retries);
+                               {"torque_sweep", {{"a", 2}, {"b", 10}, {"c", 0.02}, {"d", 2}}}}, 5000, retries);
   ASSERT_TRUE(ev2) << d.log();
   EXPECT_EQ(ev2->data.at("samples"), 5000);
   EXPECT_EQ(d.terminate(), 0) << d.log();
