@@ -12,13 +12,9 @@ using control::Reply;
 using nlohmann::json;
 
 json fault_names(std::uint32_t f) {
-  static const std::pair<std::uint32_t, const char*> names[] = {
-      {kFaultEstop, "estop"},       {kFaultAmplifier, "amplifier"}, {kFaultAmpComms, "amp_comms"},
-      {kFaultWatchdog, "watchdog"}, {kFaultOverruns, "overruns"},   {kFaultVelocity, "velocity"},
-      {kFaultCommanded, "commanded"}};
   json out = json::array();
-  for (const auto& [bit, name] : names)
-    if (f & bit) out.push_back(name);
+  for (const FaultName& n : kFaultNames)
+    if (f & n.bit) out.push_back(n.name);
   return out;
 }
 

@@ -138,6 +138,8 @@ void HapticCore::cycle(const capture::DaqInputs& in, const LineInputs& lines,
             (limited ? interchange::kTorqueLimited : 0u);
   rec.recording_id = recording_;
   rec.mode = mode_;
+  rec.seq = static_cast<std::uint64_t>(cycles_);
+  rec.faults = supervisor_.latched();
   if (mode_ == Mode::Calibrate) calibration_.after_output(out, s.flags);
   if (calibration_done) {
     calibration_result_.publish(calibration_.data());

@@ -5,6 +5,16 @@
 
 namespace knoblab::hapticd {
 
+std::string fault_list(std::uint32_t faults) {
+  std::string out;
+  for (const FaultName& f : kFaultNames) {
+    if ((faults & f.bit) == 0) continue;
+    if (!out.empty()) out += ',';
+    out += f.name;
+  }
+  return out;
+}
+
 bool Supervisor::apply(const SafetyInputs& in, capture::DaqOutputs& out) {
   std::uint32_t now = in.external_faults;
   if (in.estop) now |= kFaultEstop;

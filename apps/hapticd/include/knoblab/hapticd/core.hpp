@@ -53,7 +53,9 @@ struct CoreCommand {
 struct LoopRecord {
   capture::Sample sample;
   std::int64_t now_ns = 0;         // CLOCK_MONOTONIC at the cycle's start (0 in simulated time)
+  std::uint64_t seq = 0;           // the cycle's number: a gap means the ring lost records
   std::uint32_t recording_id = 0;  // 0: not recording; else which recording
+  std::uint32_t faults = 0;        // Fault bits latched after this cycle's supervisor
   Mode mode = Mode::Idle;
 };
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include "knoblab/capture/daq.hpp"
 
@@ -20,7 +21,24 @@ enum Fault : std::uint32_t {
   kFaultOverruns = 1u << 4,       // too many consecutive loop overruns
   kFaultVelocity = 1u << 5,       // knob faster than the velocity limit
   kFaultCommanded = 1u << 6,      // a client asked for the safe state
+  kFaultIo = 1u << 7,             // DAQ or GPIO reads/writes failed several cycles running
+  kFaultNonFinite = 1u << 8,      // NaN or ±Inf in a command or the estimated velocity
+  kFaultRecording = 1u << 9,      // a capture could not be stored: it stops, the motor goes safe
 };
+
+// Each fault's name in the protocol, the store and logs: the one table.
+struct FaultName {
+  Fault bit;
+  const char* name;
+};
+inline constexpr FaultName kFaultNames[] = {
+    {kFaultEstop, "estop"},         {kFaultAmplifier, "amplifier"}, {kFaultAmpComms, "amp_comms"},
+    {kFaultWatchdog, "watchdog"},   {kFaultOverruns, "overruns"},   {kFaultVelocity, "velocity"},
+    {kFaultCommanded, "commanded"}, {kFaultIo, "io"},               {kFaultNonFinite, "non_finite"},
+    {kFaultRecording, "recording"}};
+
+// "estop,velocity" ("" for none), in kFaultNames order.
+std::string fault_list(std::uint32_t faults);
 
 struct SafetyLimits {
   double torque_limit_Nm = 0.180;      // continuous (thesis §5.2.3: 180 mN·m)
