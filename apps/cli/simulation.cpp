@@ -1,6 +1,7 @@
 #include "simulation.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <stdexcept>
 #include <vector>
@@ -15,6 +16,11 @@ namespace knoblab::cli {
 namespace {
 
 std::string fmt(double x) { return interchange::shortest(x); }
+std::string approx(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", x);
+  return buf;
+}
 
 std::string stimulus_json(const model::SweptSine& s) {
   return "{\"kind\": \"swept_sine\", \"equation\": 8, \"a\": " + fmt(s.a) + ", \"b\": " + fmt(s.b) +
@@ -63,7 +69,7 @@ SimulationResult simulate(const SimulationRequest& request, store::Store* db) {
   cfg.rate_hz = r.rate_hz;
   cfg.stimulus = r.stimulus;
   cfg.pid = r.pid;
-  cfg.calibration = daq.calibration();
+  const capture::SensorCalibration calibration = daq.calibration();
   capture::CaptureController controller(cfg);
 
   const auto cycles = static_cast<std::int64_t>(std::llround(r.seconds * r.rate_hz));
@@ -74,7 +80,7 @@ SimulationResult simulate(const SimulationRequest& request, store::Store* db) {
   cap.metadata = {{"source", "knoblab simulate"},     {"knob", r.knob_name},
                   {"mode", r.mode},                    {"rate_hz", fmt(r.rate_hz)},
                   {"seed", std::to_string(r.seed)},    {"stimulus", stimulus_json(r.stimulus)},
-                  {"orientation", orientation},        {"calibration", cfg.calibration.to_json()}};
+                  {"orientation", orientation},        {"calibration", calibration.to_json()}};
   if (!r.effects.empty()) {
     std::string list;
     for (const sim::EffectSpec& e : r.effects) list += (list.empty() ? "" : ";") + e.text();
@@ -92,7 +98,7 @@ SimulationResult simulate(const SimulationRequest& request, store::Store* db) {
     info.rate_hz = r.rate_hz;
     info.stimulus = stimulus_json(r.stimulus);
     info.orientation = orientation;
-    info.calibration = cfg.calibration.to_json();
+    info.calibration = calibration.to_json();
     info.source = "simulate";
     info.has_command = true;
     info.metadata = "{\"seed\": " + std::to_string(r.seed) + "}";
@@ -103,7 +109,7 @@ SimulationResult simulate(const SimulationRequest& request, store::Store* db) {
   // and supervisor the realtime daemon runs.
   hapticd::CoreConfig core_cfg;
   core_cfg.rate_hz = r.rate_hz;
-  core_cfg.calibration = cfg.calibration;
+  core_cfg.calibration = calibration;
   hapticd::HapticCore core(core_cfg);
   hapticd::CoreCommand start;
   start.kind = hapticd::CoreCommand::StartCapture;
@@ -112,14 +118,18 @@ SimulationResult simulate(const SimulationRequest& request, store::Store* db) {
   core.post(start);
 
   double sq_err = 0.0;
+  hapticd::LoopRecord last{};
   for (std::int64_t i = 0; i <= cycles; ++i) {
     capture::DaqInputs in;
     capture::DaqOutputs out;
     hapticd::LoopRecord rec;
-    daq.read(in);
-    core.cycle(in, {}, 0, 0, out, rec);
-    daq.write(out);
+    // The simulated DAQ cannot fail unless a test makes it.
+    hapticd::CycleContext ctx;
+    ctx.io_ok = daq.read(in) == capture::IoStatus::ok;
+    core.cycle(in, ctx, out, rec);
+    (void)daq.write(out);
     if (rec.recording_id == 0) continue;
+    last = rec;
     const capture::Sample& s = rec.sample;
     cap.t.push_back(s.t);
     cap.theta.push_back(s.theta);
@@ -131,6 +141,17 @@ SimulationResult simulate(const SimulationRequest& request, store::Store* db) {
     sq_err += e * e;
     result.max_command_V = std::max(result.max_command_V, std::abs(s.command));
     if (writer) writer->append(s);
+  }
+  if (last.end == hapticd::RecordingEnd::fault) {
+    // Say why and where, so the user can change the stimulus: a capture cut
+    // by the supervisor is not a capture of the knob.
+    const double f = r.stimulus.frequency_hz(last.sample.t);
+    throw std::runtime_error("the capture stopped at t = " + approx(last.sample.t) + " s on a safety fault (" +
+                             hapticd::fault_list(last.faults) + ") after " + std::to_string(cap.t.size()) + " of " +
+                             std::to_string(cycles) + " samples; the sweep there runs at " + approx(f) + " Hz with " +
+                             approx(r.stimulus.c) + " rad amplitude, up to " +
+                             approx(2.0 * std::numbers::pi * f * r.stimulus.c) + " rad/s (velocity limit " +
+                             approx(core_cfg.limits.velocity_limit_rad_s) + " rad/s): shorten it or slow the sweep");
   }
   if (static_cast<std::int64_t>(cap.t.size()) != cycles)
     throw std::logic_error("the capture recorded " + std::to_string(cap.t.size()) + " of " +

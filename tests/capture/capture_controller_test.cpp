@@ -20,16 +20,19 @@ Recording run(CaptureConfig cfg, const char* knob, sim::Load load, int cycles) {
   p.knob = *sim::presets::knob(knob);
   p.load = load;
   SimDaq daq(p, cfg.rate_hz);
-  cfg.calibration = daq.calibration();
+  SensorConfig sc;
+  sc.rate_hz = cfg.rate_hz;
+  sc.calibration = daq.calibration();
+  SensorFrontEnd sensors(sc);
   CaptureController c(cfg);
   Recording r;
   for (int i = 0; i < cycles; ++i) {
     DaqInputs in;
     DaqOutputs out;
     Sample s;
-    daq.read(in);
-    c.update(in, out, s);
-    daq.write(out);
+    EXPECT_EQ(daq.read(in), IoStatus::ok);
+    c.update(sensors.update(in), out, s);
+    EXPECT_EQ(daq.write(out), IoStatus::ok);
     r.samples.push_back(s);
   }
   return r;

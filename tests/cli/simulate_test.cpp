@@ -156,8 +156,9 @@ TEST(Simulate, ParamsFileGivesTheSameKnobAsThePreset) {
 TEST(Simulate, SixtySecondsAtTenKilohertzLoseNothing) {
   ScratchDir dir;
   const auto db_path = dir / "lab.sqlite";
+  // A sweep slow enough for a minute: 1.5 Hz at 60 s, 9.4 rad/s at most.
   const RunResult r = run_knoblab({"simulate", "--knob", "moderate-detents", "--seconds", "60", "--rate",
-                                   "10000", "--db", db_path.string()});
+                                   "10000", "--sweep", "0,90,1,60", "--db", db_path.string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   store::Store db = store::Store::open(db_path);
   const auto info = db.capture_info(1);
@@ -169,6 +170,15 @@ TEST(Simulate, SixtySecondsAtTenKilohertzLoseNothing) {
   for (std::size_t i = 0; i < c.size(); ++i)
     ASSERT_EQ(c.t[i], static_cast<double>(i) * (1.0 / 10000.0)) << "sample " << i;
   EXPECT_EQ(db.integrity_check(), "ok");
+}
+
+TEST(Simulate, ACaptureCutBySafetySaysWhyAndExitsNonZero) {
+  // Table 3's sweep, run for a minute, reaches 7.8 Hz × 1 rad at 46.5 s: the
+  // knob then passes the 50 rad/s velocity limit and the supervisor stops it.
+  const RunResult r = run_knoblab({"simulate", "--knob", "moderate-detents", "--seconds", "60", "--rate", "10000"});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("safety fault (velocity)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("velocity limit 50 rad/s"), std::string::npos) << r.err;
 }
 
 TEST(ImportExport, RoundTripKeepsEverySampleAndTheDescription) {

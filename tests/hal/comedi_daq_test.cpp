@@ -62,14 +62,14 @@ TEST_F(ComediDaqTest, ScalesTheThesisTorqueChannel) {
   ComediDaq daq(thesis_config(), api);
   capture::DaqInputs in;
   api.set(kBoard, kAi, 0, 65535);
-  daq.read(in);
+  EXPECT_EQ(daq.read(in), capture::IoStatus::ok);
   EXPECT_NEAR(in.torque_V, 1.25, 1e-12);
   api.set(kBoard, kAi, 0, 0);
-  daq.read(in);
+  EXPECT_EQ(daq.read(in), capture::IoStatus::ok);
   EXPECT_DOUBLE_EQ(in.torque_V, -1.25);
   api.set(kBoard, kAi, 0, 49152);  // 3/4 of the way up
   api.set(kBoard, kAi, 1, 16384);
-  daq.read(in);
+  EXPECT_EQ(daq.read(in), capture::IoStatus::ok);
   EXPECT_NEAR(in.torque_V, -1.25 + 2.5 * 49152.0 / 65535.0, 1e-12);
   EXPECT_NEAR(in.accel_V, -5.0 + 10.0 * 16384.0 / 65535.0, 1e-12);
 }
@@ -83,7 +83,7 @@ TEST_F(ComediDaqTest, RangeByIndexAndGainOffsetApply) {
   ComediDaq daq(c, api);
   api.set(kBoard, kAi, 1, 65535);
   capture::DaqInputs in;
-  daq.read(in);
+  EXPECT_EQ(daq.read(in), capture::IoStatus::ok);
   EXPECT_NEAR(in.accel_V, 0.5 * 10.0 + 1.0, 1e-12);
 }
 
@@ -91,16 +91,16 @@ TEST_F(ComediDaqTest, EncoderCountsRunOnAcrossThe24BitWrap) {
   api.set(kBoard, kCounter, 0, 0xFFFFFE);  // −2 at open
   ComediDaq daq(thesis_config(), api);
   capture::DaqInputs in;
-  daq.read(in);
+  EXPECT_EQ(daq.read(in), capture::IoStatus::ok);
   EXPECT_EQ(in.encoder_counts, -2);
   api.set(kBoard, kCounter, 0, 0x000005);
-  daq.read(in);
+  EXPECT_EQ(daq.read(in), capture::IoStatus::ok);
   EXPECT_EQ(in.encoder_counts, 5);
   std::uint32_t raw = 5;
   for (int i = 0; i < 300; ++i) {  // 300 × 64 000 counts = 30 revolutions, > 2^24
     raw = (raw + 64000) & 0xFFFFFF;
     api.set(kBoard, kCounter, 0, raw);
-    daq.read(in);
+    EXPECT_EQ(daq.read(in), capture::IoStatus::ok);
   }
   EXPECT_EQ(in.encoder_counts, 5 + 300 * 64000);
 }
@@ -113,25 +113,25 @@ TEST_F(ComediDaqTest, EncoderOnASeparateCardWithSignAndReset) {
   EXPECT_EQ(api.open_devices, 2);
   EXPECT_THAT(api.log, ::testing::Contains("reset 0/2"));
   capture::DaqInputs in;
-  daq.read(in);
+  EXPECT_EQ(daq.read(in), capture::IoStatus::ok);
   EXPECT_EQ(in.encoder_counts, 0);
   api.set("/dev/comedi1", 0, 2, 0xFFFFFFFFu - 9);  // ten counts backwards through zero
-  daq.read(in);
+  EXPECT_EQ(daq.read(in), capture::IoStatus::ok);
   EXPECT_EQ(in.encoder_counts, 10);  // sign −1
 }
 
 TEST_F(ComediDaqTest, CommandIsScaledClampedAndZeroWhenDisabled) {
   ComediDaq daq(thesis_config(), api);
-  daq.write({.motor_command_V = 5.0, .amp_enable = true});
+  EXPECT_EQ(daq.write({.motor_command_V = 5.0, .amp_enable = true}), capture::IoStatus::ok);
   EXPECT_EQ(motor_code(), 3071u);  // round((5 + 10) · 4095/20) = round(3071.25)
-  daq.write({.motor_command_V = 20.0, .amp_enable = true});
+  EXPECT_EQ(daq.write({.motor_command_V = 20.0, .amp_enable = true}), capture::IoStatus::ok);
   EXPECT_EQ(motor_code(), 4095u);
-  daq.write({.motor_command_V = -20.0, .amp_enable = true});
+  EXPECT_EQ(daq.write({.motor_command_V = -20.0, .amp_enable = true}), capture::IoStatus::ok);
   EXPECT_EQ(motor_code(), 0u);
   EXPECT_EQ(daq.stats().clamped_writes, 2u);
-  daq.write({.motor_command_V = 5.0, .amp_enable = false});
+  EXPECT_EQ(daq.write({.motor_command_V = 5.0, .amp_enable = false}), capture::IoStatus::ok);
   EXPECT_EQ(motor_code(), 2048u);
-  daq.write({.motor_command_V = std::numeric_limits<double>::quiet_NaN(), .amp_enable = true});
+  EXPECT_EQ(daq.write({.motor_command_V = std::numeric_limits<double>::quiet_NaN(), .amp_enable = true}), capture::IoStatus::ok);
   EXPECT_EQ(motor_code(), 2048u);
   EXPECT_EQ(daq.stats().clamped_writes, 2u);
 }
@@ -140,14 +140,14 @@ TEST_F(ComediDaqTest, MotorGainReversesTheCommand) {
   ComediDaqConfig c = thesis_config();
   c.motor.gain = -1.0;
   ComediDaq daq(c, api);
-  daq.write({.motor_command_V = 10.0, .amp_enable = true});
+  EXPECT_EQ(daq.write({.motor_command_V = 10.0, .amp_enable = true}), capture::IoStatus::ok);
   EXPECT_EQ(motor_code(), 0u);
 }
 
 TEST_F(ComediDaqTest, ClosingWritesZeroVoltsAndClosesTheDevice) {
   {
     ComediDaq daq(thesis_config(), api);
-    daq.write({.motor_command_V = 7.5, .amp_enable = true});
+    EXPECT_EQ(daq.write({.motor_command_V = 7.5, .amp_enable = true}), capture::IoStatus::ok);
     EXPECT_NE(motor_code(), 2048u);
   }
   EXPECT_EQ(motor_code(), 2048u);
@@ -155,20 +155,21 @@ TEST_F(ComediDaqTest, ClosingWritesZeroVoltsAndClosesTheDevice) {
   EXPECT_EQ(api.log.back(), "close " + kBoard);
 }
 
-TEST_F(ComediDaqTest, FailedReadsKeepTheLastValueAndAreCounted) {
+TEST_F(ComediDaqTest, FailedReadsAndWritesReportAnErrorKeepTheLastValueAndAreCounted) {
   ComediDaq daq(thesis_config(), api);
   api.set(kBoard, kAi, 0, 65535);
   api.set(kBoard, kCounter, 0, 100);
   capture::DaqInputs in;
-  daq.read(in);
+  EXPECT_EQ(daq.read(in), capture::IoStatus::ok);
   api.fail_reads = true;
   api.set(kBoard, kAi, 0, 0);
-  daq.read(in);
+  EXPECT_EQ(daq.read(in), capture::IoStatus::error);
   EXPECT_NEAR(in.torque_V, 1.25, 1e-12);
   EXPECT_EQ(in.encoder_counts, 100);
   EXPECT_EQ(daq.stats().read_errors, 3u);  // torque, accel, encoder
+  EXPECT_EQ(daq.write({.motor_command_V = 1.0, .amp_enable = true}), capture::IoStatus::ok);
   api.fail_writes = true;
-  daq.write({.motor_command_V = 1.0, .amp_enable = true});
+  EXPECT_EQ(daq.write({.motor_command_V = 1.0, .amp_enable = true}), capture::IoStatus::error);
   EXPECT_EQ(daq.stats().write_errors, 1u);
 }
 

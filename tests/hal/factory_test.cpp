@@ -29,8 +29,8 @@ TEST(MakeDaq, SimBackendRunsTheChosenKnob) {
   // Drive it for 0.1 s: the knob turns, so the encoder moves.
   capture::DaqInputs in;
   for (int i = 0; i < 1000; ++i) {
-    daq->read(in);
-    daq->write({.motor_command_V = 6.0, .amp_enable = true});
+    EXPECT_EQ(daq->read(in), capture::IoStatus::ok);
+    EXPECT_EQ(daq->write({.motor_command_V = 6.0, .amp_enable = true}), capture::IoStatus::ok);
   }
   EXPECT_GT(in.encoder_counts, 0);
 }
@@ -41,7 +41,7 @@ TEST(MakeDaq, SimRateDefaultsToTheDaemonsTenKilohertz) {
   auto* sim = dynamic_cast<capture::SimDaq*>(daq.get());
   ASSERT_NE(sim, nullptr);
   capture::DaqInputs in;
-  for (int i = 0; i < 10; ++i) daq->read(in);
+  for (int i = 0; i < 10; ++i) EXPECT_EQ(daq->read(in), capture::IoStatus::ok);
   EXPECT_NEAR(sim->plant().state().t, 10 * 1e-4, 1e-12);
 }
 
@@ -99,10 +99,10 @@ TEST(MakeLines, MemoryBackendStartsAssertedUnlessTold) {
   ASSERT_NE(dynamic_cast<MemoryLines*>(lines.get()), nullptr);
   DigitalInputs in;
   in.estop = false;
-  lines->read(in);
+  EXPECT_EQ(lines->read(in), capture::IoStatus::ok);
   EXPECT_TRUE(in.estop);
   lines = make_lines(json(R"({"backend": "memory", "estop": "released"})"));
-  lines->read(in);
+  EXPECT_EQ(lines->read(in), capture::IoStatus::ok);
   EXPECT_FALSE(in.estop);
   EXPECT_THAT(error_of<ConfigError>([] { make_lines(json(R"({"backend": "memory", "estop": "off"})")); }),
               HasSubstr("lines.estop: must be \"asserted\" or \"released\""));

@@ -9,7 +9,7 @@ namespace {
 
 DigitalInputs read(MemoryLines& lines) {
   DigitalInputs in;
-  lines.read(in);
+  EXPECT_EQ(lines.read(in), capture::IoStatus::ok);
   return in;
 }
 
@@ -56,10 +56,10 @@ TEST(MemoryLines, TestSideSeesWhatTheLoopWrote) {
   MemoryLines lines;
   EXPECT_FALSE(lines.amp_enable());
   EXPECT_FALSE(lines.status_led());
-  lines.write({.amp_enable = true, .status_led = false});
+  EXPECT_EQ(lines.write({.amp_enable = true, .status_led = false}), capture::IoStatus::ok);
   EXPECT_TRUE(lines.amp_enable());
   EXPECT_FALSE(lines.status_led());
-  lines.write({.amp_enable = false, .status_led = true});
+  EXPECT_EQ(lines.write({.amp_enable = false, .status_led = true}), capture::IoStatus::ok);
   EXPECT_FALSE(lines.amp_enable());
   EXPECT_TRUE(lines.status_led());
   EXPECT_EQ(lines.writes(), 2u);
@@ -70,7 +70,7 @@ TEST(MemoryLines, AFailedReadReportsEstopAndCountsAnError) {
   lines.set_read_failure(true);
   DigitalInputs in;
   in.estop = false;
-  lines.read(in);
+  EXPECT_EQ(lines.read(in), capture::IoStatus::error);
   EXPECT_TRUE(in.estop);
   EXPECT_EQ(lines.io_errors(), 1u);
   lines.set_read_failure(false);
@@ -85,7 +85,7 @@ TEST(MemoryLines, PressesFromAnotherThreadAreAllSeenByTheLoop) {
     for (int i = 0; i < kPresses; ++i) lines.click_capture_button();
   });
   DigitalInputs in;
-  while (in.capture_presses < kPresses) lines.read(in);  // the loop polling
+  while (in.capture_presses < kPresses) (void)lines.read(in);  // the loop polling
   operator_thread.join();
   EXPECT_EQ(in.capture_presses, static_cast<std::uint64_t>(kPresses));
 }

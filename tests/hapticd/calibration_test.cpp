@@ -84,9 +84,9 @@ CalRun run_calibration(capture::SimDaq& daq, CalibrationConfig cc, const capture
     capture::DaqInputs in;
     capture::DaqOutputs out;
     LoopRecord rec;
-    daq.read(in);
-    core.cycle(in, {}, 0, 0, out, rec);
-    daq.write(out);
+    EXPECT_EQ(daq.read(in), capture::IoStatus::ok);
+    core.cycle(in, {}, out, rec);
+    EXPECT_EQ(daq.write(out), capture::IoStatus::ok);
     if (rec.mode == Mode::Calibrate) ++r.calibrate_cycles;
     r.max_abs_command_V = std::max(r.max_abs_command_V, std::abs(rec.sample.command));
   }
@@ -233,9 +233,9 @@ TEST(CalibrationRun, StopEndsARunEarlyAndItReportsIncomplete) {
     capture::DaqInputs in;
     capture::DaqOutputs out;
     LoopRecord rec;
-    daq.read(in);
-    core.cycle(in, {}, 0, 0, out, rec);
-    daq.write(out);
+    EXPECT_EQ(daq.read(in), capture::IoStatus::ok);
+    core.cycle(in, {}, out, rec);
+    EXPECT_EQ(daq.write(out), capture::IoStatus::ok);
     if (i == 999) {
       EXPECT_EQ(core.state().mode, Mode::Calibrate);
       EXPECT_TRUE(out.amp_enable);
@@ -249,7 +249,7 @@ TEST(CalibrationRun, StopEndsARunEarlyAndItReportsIncomplete) {
   const CalibrationResult res = evaluate(core.last_calibration());
   EXPECT_FALSE(res.complete);
   EXPECT_FALSE(res.ok());
-  EXPECT_EQ(res.cycles, 1000);
+  EXPECT_EQ(res.cycles, 1001);  // the cycle the stop arrived in is the run's last
 }
 
 TEST(CalibrationRun, AnEmptyControllerDoesNotEnterCalibrate) {
@@ -260,7 +260,7 @@ TEST(CalibrationRun, AnEmptyControllerDoesNotEnterCalibrate) {
   ASSERT_TRUE(core.post(start));
   capture::DaqOutputs out;
   LoopRecord rec;
-  core.cycle({}, {}, 0, 0, out, rec);
+  core.cycle({}, {}, out, rec);
   EXPECT_EQ(core.state().mode, Mode::Idle);
   EXPECT_FALSE(out.amp_enable);
 }

@@ -1,6 +1,8 @@
 // The cycle as the daemon runs it: modes, commands, safety, recording.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "knoblab/capture/sim_daq.hpp"
 #include "knoblab/hapticd/core.hpp"
 #include "knoblab/sim/presets.hpp"
@@ -28,7 +30,6 @@ TEST(Core, CaptureRecordsExactlyItsCyclesThenGoesIdle) {
   start.kind = CoreCommand::StartCapture;
   capture::CaptureConfig cc;
   cc.rate_hz = 10000.0;
-  cc.calibration = daq.calibration();
   start.capture = capture::CaptureController(cc);
   start.capture_cycles = 60000;  // 6 s at 10 kHz
   ASSERT_TRUE(core.post(start));
@@ -39,9 +40,9 @@ TEST(Core, CaptureRecordsExactlyItsCyclesThenGoesIdle) {
     capture::DaqInputs in;
     capture::DaqOutputs out;
     LoopRecord rec;
-    daq.read(in);
-    core.cycle(in, {}, 0, 0, out, rec);
-    daq.write(out);
+    EXPECT_EQ(daq.read(in), capture::IoStatus::ok);
+    core.cycle(in, {}, out, rec);
+    EXPECT_EQ(daq.write(out), capture::IoStatus::ok);
     if (rec.recording_id == 1) {
       ASSERT_EQ(rec.sample.t, static_cast<double>(recorded) * (1.0 / 10000.0));
       ++recorded;
@@ -79,7 +80,9 @@ TEST(Core, EstopMidRenderIsSafeInTheSameCycle) {
     LoopRecord rec;
     LineInputs lines;
     lines.estop = i >= 1000;
-    core.cycle(in, lines, 0, 0, out, rec);
+    CycleContext ctx;
+    ctx.lines = lines;
+    core.cycle(in, ctx, out, rec);
     if (i < 1000) {
       driving += out.amp_enable && out.motor_command_V != 0.0;
     } else {
@@ -95,37 +98,47 @@ TEST(Core, EstopMidRenderIsSafeInTheSameCycle) {
   EXPECT_EQ(core.state().faults, kFaultEstop);
 }
 
-TEST(Core, ExternalFaultsAndForcedSafeLatchUntilCleared) {
+TEST(Core, ExternalFaultsAndForcedSafeLatchUntilClearedAndNothingResumesByItself) {
   capture::SimDaq daq(plant("moderate-detents"), 10000.0);
   HapticCore core(config(daq));
   CoreCommand c;
   c.kind = CoreCommand::SetMode;
   c.mode = Mode::Render;
   core.post(c);
-  std::uint32_t external = 0;
+  CycleContext ctx;
   auto step = [&] {
     capture::DaqInputs in;
     capture::DaqOutputs out;
     LoopRecord rec;
-    core.cycle(in, {}, 0, external, out, rec);
+    core.cycle(in, ctx, out, rec);
     return out;
   };
   EXPECT_TRUE(step().amp_enable);
-  external = kFaultAmplifier;
+  ctx.external_faults = kFaultAmplifier;
   EXPECT_FALSE(step().amp_enable);
+  EXPECT_EQ(core.state().mode, Mode::Idle);  // a fault ends rendering
   c.kind = CoreCommand::ClearFault;
   core.post(c);
   EXPECT_FALSE(step().amp_enable);  // the amplifier still reports it
-  external = 0;
+  EXPECT_EQ(core.state().faults, kFaultAmplifier);
+  ctx.external_faults = 0;
   EXPECT_FALSE(step().amp_enable);  // gone, but latched until cleared
+  c.kind = CoreCommand::SetMode;
+  c.mode = Mode::Render;
+  core.post(c);
+  EXPECT_FALSE(step().amp_enable);  // refused while faulted
+  EXPECT_EQ(core.state().mode, Mode::Idle);
   c.kind = CoreCommand::ClearFault;
+  core.post(c);
+  EXPECT_FALSE(step().amp_enable);  // cleared, and idle: the client asks again
+  EXPECT_EQ(core.state().faults, 0u);
+  c.kind = CoreCommand::SetMode;
   core.post(c);
   EXPECT_TRUE(step().amp_enable);
   c.kind = CoreCommand::ForceSafe;
   core.post(c);
   EXPECT_FALSE(step().amp_enable);
   EXPECT_EQ(core.state().faults, kFaultCommanded);
-  EXPECT_EQ(core.state().mode, Mode::Render);
   c.kind = CoreCommand::ClearFault;
   core.post(c);
   c.kind = CoreCommand::ForceSafe;
@@ -133,6 +146,47 @@ TEST(Core, ExternalFaultsAndForcedSafeLatchUntilCleared) {
   core.post(c);
   EXPECT_FALSE(step().amp_enable);
   EXPECT_EQ(core.state().faults, kFaultWatchdog);
+}
+
+// A hand turning the knob at a steady 2 rad/s: encoder counts only.
+capture::DaqInputs turned_by_hand(const capture::SensorCalibration& cal, int cycle) {
+  capture::DaqInputs in;
+  const double theta = 2.0 * cycle / 10000.0;
+  in.encoder_counts = static_cast<std::int64_t>(std::llround(theta / (2.0 * M_PI) * cal.counts_per_rev));
+  in.torque_V = cal.torque_offset_V;
+  return in;
+}
+
+TEST(Core, IdleRecordsTheVelocityOfAKnobTurnedByHand) {
+  capture::SimDaq daq(plant("moderate-detents"), 10000.0);
+  HapticCore core(config(daq));
+  CoreCommand c;
+  c.kind = CoreCommand::StartRecording;  // a trial in idle mode
+  ASSERT_TRUE(core.post(c));
+  LoopRecord rec;
+  capture::DaqOutputs out;
+  for (int i = 0; i < 3000; ++i) core.cycle(turned_by_hand(daq.calibration(), i), {}, out, rec);
+  EXPECT_EQ(rec.mode, Mode::Idle);
+  EXPECT_NE(rec.recording_id, 0u);
+  EXPECT_NEAR(rec.sample.omega, 2.0, 0.05);
+}
+
+TEST(Core, EnteringRenderDoesNotRestartTheVelocityEstimate) {
+  capture::SimDaq daq(plant("moderate-detents"), 10000.0);
+  HapticCore core(config(daq));
+  LoopRecord rec;
+  capture::DaqOutputs out;
+  int i = 0;
+  for (; i < 3000; ++i) core.cycle(turned_by_hand(daq.calibration(), i), {}, out, rec);
+  CoreCommand c;
+  c.kind = CoreCommand::SetMode;
+  c.mode = Mode::Render;
+  ASSERT_TRUE(core.post(c));
+  core.cycle(turned_by_hand(daq.calibration(), i), {}, out, rec);
+  ASSERT_EQ(rec.mode, Mode::Render);
+  // One sensor front end ran all along: the first render cycle already knows
+  // the knob's speed (a restarted filter would start from 0).
+  EXPECT_NEAR(rec.sample.omega, 2.0, 0.05);
 }
 
 }  // namespace

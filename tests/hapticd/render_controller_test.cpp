@@ -12,10 +12,17 @@ namespace {
 
 constexpr double kRate = 10000.0, kDt = 1.0 / kRate;
 
+capture::SensorConfig sensor_config() {
+  capture::SensorConfig c;
+  c.rate_hz = kRate;
+  return c;
+}
+
 struct Bench {
   RenderConfig cfg;
   RenderController rc{cfg};
   capture::SensorCalibration cal;
+  capture::SensorFrontEnd sensors{sensor_config()};
 
   // Drives the hand path θ(t) for n cycles; returns the last command.
   double run(const std::function<double(double)>& theta, int n, int start = 0,
@@ -26,7 +33,7 @@ struct Bench {
       capture::DaqInputs in;
       in.encoder_counts = static_cast<std::int64_t>(std::floor(theta(i * kDt) / (2 * M_PI / cal.counts_per_rev)));
       in.torque_V = measured_torque / cal.torque_Nm_per_V;
-      rc.update(in, out, s);
+      rc.update(sensors.update(in), out, s);
       if (commands) commands->push_back(out.motor_command_V);
     }
     return out.motor_command_V;

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "knoblab/hapticd/supervisor.hpp"
 
 namespace knoblab::hapticd {
@@ -82,6 +84,50 @@ TEST(Supervisor, VelocityOverrunsAndExternalFaultsEachGoSafe) {
   auto out = driving(1.0);
   sup.apply(ok, out);
   EXPECT_EQ(sup.latched(), 0u);
+}
+
+TEST(Supervisor, NonFiniteVelocityCommandOrReadingsGoSafeWhereTheLimitsAloneWouldLetThemThrough) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  struct Case {
+    double omega, command;
+    bool sensors_finite;
+  };
+  for (const Case& c : {Case{nan, 1.0, true}, Case{-inf, 1.0, true}, Case{0.0, nan, true},
+                        Case{0.0, inf, true}, Case{0.0, 1.0, false}}) {
+    Supervisor sup;
+    SafetyInputs in;
+    in.omega = c.omega;
+    in.sensors_finite = c.sensors_finite;
+    auto out = driving(c.command);
+    sup.apply(in, out);
+    EXPECT_TRUE(sup.latched() & kFaultNonFinite) << c.omega << " " << c.command;  // -inf is fast, too
+    EXPECT_EQ(out.motor_command_V, 0.0);
+    EXPECT_FALSE(out.amp_enable);
+  }
+}
+
+TEST(Supervisor, IoErrorsLatchAtTheConfiguredCountInARow) {
+  SafetyLimits limits;
+  limits.max_consecutive_io_errors = 3;
+  Supervisor sup(limits);
+  SafetyInputs in;
+  in.consecutive_io_errors = 2;
+  auto out = driving(1.0);
+  sup.apply(in, out);
+  EXPECT_EQ(sup.latched(), 0u);
+  EXPECT_TRUE(out.amp_enable);
+  in.consecutive_io_errors = 3;
+  out = driving(1.0);
+  sup.apply(in, out);
+  EXPECT_EQ(sup.latched(), kFaultIo);
+  EXPECT_FALSE(out.amp_enable);
+}
+
+TEST(Supervisor, FaultListNamesEachLatchedFaultOnceInTableOrder) {
+  EXPECT_EQ(fault_list(0), "");
+  EXPECT_EQ(fault_list(kFaultVelocity | kFaultEstop), "estop,velocity");
+  EXPECT_EQ(fault_list(kFaultIo | kFaultNonFinite | kFaultRecording), "io,non_finite,recording");
 }
 
 }  // namespace

@@ -8,16 +8,25 @@ SimDaq::SimDaq(const sim::PlantConfig& config, double rate_hz) : plant_(config),
   if (!(rate_hz > 0.0)) throw std::invalid_argument("SimDaq: rate must be positive");
 }
 
-void SimDaq::read(DaqInputs& in) {
+IoStatus SimDaq::read(DaqInputs& in) {
+  // The plant moves on whether or not its sensors can be read.
   const sim::SensorReadings& r = plant_.step(command_V_, dt_);
+  if (fail_reads_.load(std::memory_order_relaxed)) {
+    in = last_;
+    return IoStatus::error;
+  }
   in.encoder_counts = r.encoder_counts;
   in.torque_V = r.torque_volts;
   in.accel_V = r.accel_volts;
+  last_ = in;
+  return IoStatus::ok;
 }
 
-void SimDaq::write(const DaqOutputs& out) {
+IoStatus SimDaq::write(const DaqOutputs& out) {
+  if (fail_writes_.load(std::memory_order_relaxed)) return IoStatus::error;
   // A disabled amplifier drives no current, whatever the DAC says.
   command_V_ = out.amp_enable ? out.motor_command_V : 0.0;
+  return IoStatus::ok;
 }
 
 SensorCalibration SimDaq::calibration() const {

@@ -218,32 +218,39 @@ ComediDaq::ComediDaq(const ComediDaqConfig& config, ComediApi& api) : api_(api),
 
 ComediDaq::~ComediDaq() { write_volts(0.0); }
 
-void ComediDaq::read_analog(AnalogIn& ch) {
+bool ComediDaq::read_analog(AnalogIn& ch) {
   std::uint32_t raw = 0;
-  if (api_.data_read(ch.dev, ch.subdevice, ch.channel, ch.range, ch.aref, raw))
+  if (api_.data_read(ch.dev, ch.subdevice, ch.channel, ch.range, ch.aref, raw)) {
     ch.last_V = ch.scale.to_volts(raw);
-  else
-    read_errors_.fetch_add(1, std::memory_order_relaxed);  // keep the last good value
+    return true;
+  }
+  read_errors_.fetch_add(1, std::memory_order_relaxed);  // keep the last good value
+  return false;
 }
 
-void ComediDaq::read(capture::DaqInputs& in) {
-  read_analog(torque_);
-  read_analog(accel_);
+capture::IoStatus ComediDaq::read(capture::DaqInputs& in) {
+  bool ok = read_analog(torque_);
+  ok = read_analog(accel_) && ok;
   in.torque_V = torque_.last_V;
   in.accel_V = accel_.last_V;
   std::uint32_t raw = 0;
-  if (api_.data_read(encoder_.dev, encoder_.subdevice, encoder_.channel, 0, 0, raw))
+  if (api_.data_read(encoder_.dev, encoder_.subdevice, encoder_.channel, 0, 0, raw)) {
     encoder_.unwrap.update(raw);
-  else
+  } else {
     read_errors_.fetch_add(1, std::memory_order_relaxed);
+    ok = false;
+  }
   in.encoder_counts = encoder_.sign * encoder_.unwrap.count();
+  return ok ? capture::IoStatus::ok : capture::IoStatus::error;
 }
 
-void ComediDaq::write(const capture::DaqOutputs& out) {
+capture::IoStatus ComediDaq::write(const capture::DaqOutputs& out) {
   const bool drive = out.amp_enable && std::isfinite(out.motor_command_V);
   const double volts = drive ? motor_.gain * out.motor_command_V : 0.0;
   if (motor_.scale.clamps(volts)) clamped_writes_.fetch_add(1, std::memory_order_relaxed);
-  if (!write_volts(volts)) write_errors_.fetch_add(1, std::memory_order_relaxed);
+  if (write_volts(volts)) return capture::IoStatus::ok;
+  write_errors_.fetch_add(1, std::memory_order_relaxed);
+  return capture::IoStatus::error;
 }
 
 bool ComediDaq::write_volts(double volts) {

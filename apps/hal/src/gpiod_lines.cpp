@@ -111,23 +111,33 @@ GpiodLines::~GpiodLines() {
     Line& line = lines_[index(role)];
     if (!line.request) continue;
     line.written = -1;  // force the write
-    set(line, false);
+    (void)set(line, false);  // best effort: a failure is already counted
   }
 }
 
-void GpiodLines::read(DigitalInputs& in) {
+capture::IoStatus GpiodLines::read(DigitalInputs& in) {
+  bool ok = true;
   const Line& estop = lines_[index(LineRole::Estop)];
   const gpiod_line_value e = gpiod_line_request_get_value(estop.request.get(), estop.where.offset);
-  if (e == GPIOD_LINE_VALUE_ERROR) io_errors_.fetch_add(1, std::memory_order_relaxed);
+  if (e == GPIOD_LINE_VALUE_ERROR) {
+    io_errors_.fetch_add(1, std::memory_order_relaxed);
+    ok = false;
+  }
   in.estop = e != GPIOD_LINE_VALUE_INACTIVE;  // an unreadable e-stop counts as asserted
 
   const Line& button = lines_[index(LineRole::CaptureButton)];
   const gpiod_line_value b = gpiod_line_request_get_value(button.request.get(), button.where.offset);
-  if (b == GPIOD_LINE_VALUE_ERROR) io_errors_.fetch_add(1, std::memory_order_relaxed);
+  if (b == GPIOD_LINE_VALUE_ERROR) {
+    io_errors_.fetch_add(1, std::memory_order_relaxed);
+    ok = false;
+  }
   in.capture_button = b == GPIOD_LINE_VALUE_ACTIVE;
 
   const int n = gpiod_line_request_read_edge_events(button.request.get(), events_.get(), kEventCapacity);
-  if (n < 0 && errno != EAGAIN) io_errors_.fetch_add(1, std::memory_order_relaxed);
+  if (n < 0 && errno != EAGAIN) {
+    io_errors_.fetch_add(1, std::memory_order_relaxed);
+    ok = false;
+  }
   for (int i = 0; i < n; ++i) {
     gpiod_edge_event* ev = gpiod_edge_event_buffer_get_event(events_.get(), static_cast<unsigned long>(i));
     // The kernel numbers this line's events 1, 2, 3…; only rising (= press) ones are requested.
@@ -135,25 +145,28 @@ void GpiodLines::read(DigitalInputs& in) {
     if (seqno > presses_) presses_ = seqno;
   }
   in.capture_presses = presses_;
+  return ok ? capture::IoStatus::ok : capture::IoStatus::error;
 }
 
-void GpiodLines::write(const DigitalOutputs& out) {
-  set(lines_[index(LineRole::AmpEnable)], out.amp_enable);
-  set(lines_[index(LineRole::StatusLed)], out.status_led);
+capture::IoStatus GpiodLines::write(const DigitalOutputs& out) {
+  const bool enable_ok = set(lines_[index(LineRole::AmpEnable)], out.amp_enable);
+  const bool led_ok = set(lines_[index(LineRole::StatusLed)], out.status_led);
+  return enable_ok && led_ok ? capture::IoStatus::ok : capture::IoStatus::error;
 }
 
 // Only on change: the request is exclusive, so nothing else moves the line.
-void GpiodLines::set(Line& line, bool active) {
+bool GpiodLines::set(Line& line, bool active) {
   const int want = active ? 1 : 0;
-  if (line.written == want) return;
+  if (line.written == want) return true;
   const int rc = gpiod_line_request_set_value(line.request.get(), line.where.offset,
                                               active ? GPIOD_LINE_VALUE_ACTIVE : GPIOD_LINE_VALUE_INACTIVE);
   if (rc < 0) {
     io_errors_.fetch_add(1, std::memory_order_relaxed);
     line.written = -1;  // retry next cycle
-  } else {
-    line.written = want;
+    return false;
   }
+  line.written = want;
+  return true;
 }
 
 }  // namespace knoblab::hal

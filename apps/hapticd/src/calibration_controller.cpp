@@ -61,8 +61,6 @@ CalibrationController::CalibrationController(const CalibrationConfig& cfg) : cfg
   if (!positive(seconds)) throw std::invalid_argument("calibration: duration must be positive");
   total_cycles_ = static_cast<std::int64_t>(std::llround(seconds * cfg_.rate_hz));
   if (total_cycles_ < 1) throw std::invalid_argument("calibration: the run is shorter than one cycle");
-  velocity_filter_ = model::design_butterworth_lowpass(
-      cfg_.velocity_filter_order, std::min(cfg_.velocity_cutoff_hz, 0.2 * cfg_.rate_hz), cfg_.rate_hz);
   data_.kind = cfg_.kind;
   data_.calibration = cfg_.calibration;
 }
@@ -109,23 +107,18 @@ CalibrationController::Reference CalibrationController::reference(double t) cons
   return r;
 }
 
-void CalibrationController::update(const capture::DaqInputs& in, capture::DaqOutputs& out,
+void CalibrationController::update(const capture::SensorReading& in, capture::DaqOutputs& out,
                                    capture::Sample& s) {
   const double dt = 1.0 / cfg_.rate_hz;
   const double t = static_cast<double>(cycle_) * dt;
   const capture::SensorCalibration& cal = cfg_.calibration;
 
   s.t = t;
-  s.theta = cal.theta(in.encoder_counts);
-  if (cycle_ == 0) {
-    data_.theta0 = s.theta;
-    prev_theta_ = s.theta;
-  }
-  const double raw_omega = (s.theta - prev_theta_) / dt;
-  prev_theta_ = s.theta;
-  s.omega = velocity_filter_.process(raw_omega);
-  s.alpha = cal.alpha(in.accel_V, s.theta);
-  s.torque = cal.torque(in.torque_V);
+  s.theta = in.theta;
+  if (cycle_ == 0) data_.theta0 = s.theta;
+  s.omega = in.omega;
+  s.alpha = in.alpha;
+  s.torque = in.torque;
 
   const Reference ref = reference(t);
   const double ref_theta = data_.theta0 + ref.theta;

@@ -1,5 +1,9 @@
 #include "knoblab/hapticd/control_handler.hpp"
 
+#include <cmath>
+#include <cstdio>
+#include <string_view>
+
 #include "knoblab/hapticd/daemon.hpp"
 #include "knoblab/modbus/status_bits.hpp"
 
@@ -91,8 +95,45 @@ RenderParams render_params_from_args(const json& a, RenderParams base, bool part
   return p;
 }
 
+namespace {
+std::string short_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", v);
+  return buf;
+}
+}  // namespace
+
+std::optional<ParamProblem> render_params_problem(const RenderParams& p, const SafetyLimits& limits) {
+  const std::pair<const char*, double> values[] = {{"M_acc", p.M_acc}, {"B_vel", p.B_vel}, {"A_pos", p.A_pos},
+                                                   {"P_pos", p.P_pos}, {"dv", p.dv},       {"D_neg", p.D_neg},
+                                                   {"D_pos", p.D_pos}, {"K_vm", p.K_vm},   {"B_vm", p.B_vm}};
+  for (const auto& [key, v] : values) {
+    if (!std::isfinite(v)) return ParamProblem{key, std::string(key) + " is not a finite number"};
+    // A detent amplitude's sign is its phase; everything else is a physical
+    // magnitude that would feed energy in if negative.
+    if (std::string_view(key) != "A_pos" && v < 0.0)
+      return ParamProblem{key, std::string(key) + " = " + short_number(v) + " is negative: it would feed energy into the knob"};
+  }
+  if (!(p.P_pos > 0.0)) return ParamProblem{"P_pos", "P_pos must be positive (the detent period)"};
+  const double limit = limits.torque_limit_Nm;
+  const auto beyond = [&](const char* key, double torque) -> std::optional<ParamProblem> {
+    if (std::abs(torque) <= limit) return std::nullopt;
+    return ParamProblem{key, std::string(key) + " = " + short_number(torque * 1e3) +
+                                 " mN·m is beyond the device's torque limit of " + short_number(limit * 1e3) +
+                                 " mN·m"};
+  };
+  if (auto b = beyond("A_pos", p.A_pos)) return b;
+  if (p.stick) {
+    if (auto b = beyond("D_neg", p.D_neg)) return b;
+    if (auto b = beyond("D_pos", p.D_pos)) return b;
+  }
+  return std::nullopt;
+}
+
 Reply ControlHandler::render(const json& a, bool partial) {
   const RenderParams p = render_params_from_args(a, params_, partial);
+  if (const auto problem = render_params_problem(p, daemon_.config().core.limits))
+    return Reply::failure(ErrorCode::bad_args, problem->message, problem->key);
   CoreCommand c;
   c.kind = CoreCommand::SetRender;
   c.render = p;

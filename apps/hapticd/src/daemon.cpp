@@ -105,6 +105,7 @@ Daemon::Daemon(DaemonConfig cfg, std::unique_ptr<capture::Daq> daq, std::unique_
 
 Daemon::~Daemon() {
   stop_.store(true);
+  loop_done_.store(true, std::memory_order_release);
   if (impl_->server) impl_->server->stop();
   if (poller_) poller_->stop();
   if (impl_->writer.joinable()) impl_->writer.join();
@@ -145,7 +146,6 @@ bool Daemon::start_capture(const capture::CaptureConfig& cc, double seconds, con
   c.kind = CoreCommand::StartCapture;
   capture::CaptureConfig full = cc;
   full.rate_hz = cfg_.core.rate_hz;
-  full.calibration = cfg_.core.calibration;
   c.capture = capture::CaptureController(full);
   c.capture_cycles = static_cast<std::int64_t>(std::llround(seconds * cfg_.core.rate_hz));
   if (!post(c)) {
@@ -279,7 +279,43 @@ void Daemon::publish_events(const std::vector<FinishedRecording>& finished) {
   if (impl_->handler && impl_->server) impl_->handler->publish_events(*impl_->server, finished);
 }
 
+namespace {
+
+// The motor's safe state: zero command, amplifier enable low. Best effort by
+// design: if the hardware cannot be written, nothing else can be done here
+// (the amplifier's own enable input defaults low, and the image's watchdog
+// and e-stop chain do not depend on this process).
+void write_safe_outputs(capture::Daq& daq, hal::DigitalLines& lines) noexcept {
+  (void)daq.write({});
+  (void)lines.write({});
+}
+
+}  // namespace
+
+// Whatever way run() leaves — a stop request, the cycle count, an exception
+// from the loop or from starting a thread — this writes the safe state, lets
+// the writer commit what it has and stops it, then stops the server and the
+// poller. Without it an exception skipped all of that and ~Daemon waited
+// forever for a writer nobody had told to finish.
+class Daemon::RunGuard {
+ public:
+  explicit RunGuard(Daemon& d) : d_(d) {}
+  RunGuard(const RunGuard&) = delete;
+  RunGuard& operator=(const RunGuard&) = delete;
+  ~RunGuard() {
+    write_safe_outputs(*d_.daq_, *d_.lines_);
+    d_.loop_done_.store(true, std::memory_order_release);
+    if (d_.impl_->writer.joinable()) d_.impl_->writer.join();
+    if (d_.impl_->server) d_.impl_->server->stop();
+    if (d_.poller_) d_.poller_->stop();
+  }
+
+ private:
+  Daemon& d_;
+};
+
 rt::LoopResult Daemon::run() {
+  RunGuard guard(*this);
   if (poller_) {
     poller_->start();
     // The poller reports the amplifier lost until its first good read; give
@@ -298,34 +334,38 @@ rt::LoopResult Daemon::run() {
   HapticCore& core = *core_;
   RecordRing& ring = *impl_->ring;
   const std::atomic<std::uint32_t>* amp_status = poller_ ? &poller_->status_word() : nullptr;
+  bool writes_ok = true;  // the previous cycle's writes, judged in this cycle
 
-  rt::LoopResult result = rt::run(
+  return rt::run(
       cfg_.loop,
       [&](const rt::CycleInfo& info) {
-        capture::DaqInputs in;
-        hal::DigitalInputs din;
-        daq.read(in);
-        lines.read(din);
-        const std::uint32_t external =
-            amp_status ? faults_from_modbus(amp_status->load(std::memory_order_acquire)) : 0u;
-        capture::DaqOutputs out;
-        LoopRecord rec;
-        core.cycle(in, {din.estop, din.capture_button}, info.consecutive_overruns, external, out, rec);
-        daq.write(out);
-        lines.write({out.amp_enable, (rec.sample.flags & interchange::kFaultLatched) == 0});
-        rec.now_ns = info.now_ns;
-        ring.try_push(rec);
+        try {
+          capture::DaqInputs in;
+          hal::DigitalInputs din;
+          const bool daq_ok = daq.read(in) == capture::IoStatus::ok;
+          const bool lines_ok = lines.read(din) == capture::IoStatus::ok;
+          CycleContext ctx;
+          ctx.lines = {din.estop, din.capture_button};
+          ctx.consecutive_overruns = info.consecutive_overruns;
+          ctx.external_faults = amp_status ? faults_from_modbus(amp_status->load(std::memory_order_acquire)) : 0u;
+          ctx.io_ok = daq_ok && lines_ok && writes_ok;
+          capture::DaqOutputs out;
+          LoopRecord rec;
+          core.cycle(in, ctx, out, rec);
+          const bool daq_written = daq.write(out) == capture::IoStatus::ok;
+          const bool lines_written =
+              lines.write({out.amp_enable, (rec.sample.flags & interchange::kFaultLatched) == 0}) ==
+              capture::IoStatus::ok;
+          writes_ok = daq_written && lines_written;
+          rec.now_ns = info.now_ns;
+          ring.try_push(rec);
+        } catch (...) {
+          // The motor stops in this cycle, before the exception leaves the loop.
+          write_safe_outputs(daq, lines);
+          throw;
+        }
       },
       stop_, stats_.get());
-
-  // Safe state on the way out, whatever the loop was doing.
-  daq.write({});
-  lines.write({});
-  loop_done_.store(true, std::memory_order_release);
-  if (impl_->writer.joinable()) impl_->writer.join();
-  if (impl_->server) impl_->server->stop();
-  if (poller_) poller_->stop();
-  return result;
 }
 
 }  // namespace knoblab::hapticd

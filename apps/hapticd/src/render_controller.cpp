@@ -14,9 +14,7 @@ double frequency_of(const RenderParams& p) { return p.P_pos > 0.0 ? 1.0 / p.P_po
 RenderController::RenderController(const RenderConfig& cfg)
     : cfg_(cfg),
       dt_(1.0 / cfg.rate_hz),
-      ramp_cycles_(static_cast<int>(std::lround(kParamRampSeconds * cfg.rate_hz))),
-      velocity_filter_(model::design_butterworth_lowpass(
-          cfg.velocity_filter_order, std::min(cfg.velocity_cutoff_hz, 0.2 * cfg.rate_hz), cfg.rate_hz)) {}
+      ramp_cycles_(static_cast<int>(std::lround(kParamRampSeconds * cfg.rate_hz))) {}
 
 void RenderController::set_params(const RenderParams& p, bool immediately) {
   target_ = p;
@@ -28,23 +26,23 @@ void RenderController::set_params(const RenderParams& p, bool immediately) {
 }
 
 void RenderController::reset() {
-  velocity_filter_.reset();
   acc_box_.reset();
-  have_prev_ = false;
+  alpha_box_.reset();
+  started_ = false;
   cycle_ = 0;
 }
 
-void RenderController::update(const capture::DaqInputs& in, capture::DaqOutputs& out,
+void RenderController::update(const capture::SensorReading& in, capture::DaqOutputs& out,
                               capture::Sample& s) {
-  const capture::SensorCalibration& cal = cfg_.calibration;
   s.t = static_cast<double>(cycle_++) * dt_;
-  s.theta = cal.theta(in.encoder_counts);
-  const double raw_omega = have_prev_ ? (s.theta - prev_theta_) / dt_ : 0.0;
-  if (!have_prev_) vm_.reset(s.theta, 0.0);
-  have_prev_ = true;
-  prev_theta_ = s.theta;
-  s.omega = velocity_filter_.process(raw_omega);
-  s.torque = cal.torque(in.torque_V);
+  s.theta = in.theta;
+  s.omega = in.omega_render;
+  s.torque = in.torque;
+  if (!started_) {  // the virtual mass starts where and as the knob moves
+    vm_.reset(s.theta, s.omega);
+    prev_omega_ = s.omega;
+    started_ = true;
+  }
 
   const double M = M_.step(), B = B_.step(), A = A_.step(), f = f_.step();
 

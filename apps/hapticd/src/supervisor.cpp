@@ -19,7 +19,12 @@ bool Supervisor::apply(const SafetyInputs& in, capture::DaqOutputs& out) {
   std::uint32_t now = in.external_faults;
   if (in.estop) now |= kFaultEstop;
   if (std::abs(in.omega) > limits_.velocity_limit_rad_s) now |= kFaultVelocity;
+  // NaN compares false with everything: |NaN| > limit and std::clamp would
+  // both let it through, so non-finite values are a fault of their own.
+  if (!std::isfinite(in.omega) || !in.sensors_finite || !std::isfinite(out.motor_command_V))
+    now |= kFaultNonFinite;
   if (in.consecutive_overruns > limits_.max_consecutive_overruns) now |= kFaultOverruns;
+  if (in.consecutive_io_errors >= limits_.max_consecutive_io_errors) now |= kFaultIo;
 
   // A clear succeeds only for causes that are gone; live causes stay latched.
   if (in.clear_requested) latched_ = 0;

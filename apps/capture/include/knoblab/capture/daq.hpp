@@ -14,6 +14,11 @@ struct DaqInputs {
   double accel_V = 0.0;   // accelerometer channel at the ADC
 };
 
+// What a read or write did, for the loop to act on (as ros2_control's
+// return_type): a failed read leaves the last good values in place, so only
+// this status tells the supervisor that the angle it sees is frozen.
+enum class IoStatus : std::uint8_t { ok, error };
+
 struct DaqOutputs {
   double motor_command_V = 0.0;  // amplifier command (DAC)
   bool amp_enable = false;
@@ -23,8 +28,9 @@ class Daq {
  public:
   virtual ~Daq() = default;
   // Both are called from the realtime loop: no allocation, no blocking.
-  virtual void read(DaqInputs& in) = 0;
-  virtual void write(const DaqOutputs& out) = 0;
+  // `error` when any channel failed this call (its last good value stays).
+  [[nodiscard]] virtual IoStatus read(DaqInputs& in) = 0;
+  [[nodiscard]] virtual IoStatus write(const DaqOutputs& out) = 0;
 };
 
 }  // namespace knoblab::capture

@@ -5,7 +5,8 @@
 // scaling: no allocation, no lookup, no exceptions in the loop.
 //
 // A failed read keeps the channel's last good value and counts an error; a
-// failed write counts an error. hapticd watches stats() to decide to stop.
+// failed write counts an error; both report IoStatus::error, which hapticd's
+// supervisor acts on.
 #pragma once
 
 #include <atomic>
@@ -30,10 +31,10 @@ class ComediDaq final : public capture::Daq {
   ComediDaq(const ComediDaq&) = delete;
   ComediDaq& operator=(const ComediDaq&) = delete;
 
-  void read(capture::DaqInputs& in) override;
+  capture::IoStatus read(capture::DaqInputs& in) override;
   // Writes gain·motor_command_V clamped to the AO range; 0 V when the
   // amplifier is disabled or the command is not finite.
-  void write(const capture::DaqOutputs& out) override;
+  capture::IoStatus write(const capture::DaqOutputs& out) override;
 
   struct Stats {
     std::uint64_t read_errors = 0;
@@ -79,7 +80,7 @@ class ComediDaq final : public capture::Daq {
     std::int64_t sign = 1;
   };
 
-  void read_analog(AnalogIn& ch);
+  bool read_analog(AnalogIn& ch);
   bool write_volts(double volts);
 
   ComediApi& api_;

@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <string_view>
 
+#include "knoblab/capture/daq.hpp"
+
 namespace knoblab::hal {
 
 struct DigitalInputs {
@@ -26,8 +28,9 @@ class DigitalLines {
   virtual ~DigitalLines() = default;
   // Called from the realtime loop: no allocation, never blocks. Each backend
   // documents what a call costs. A failed e-stop read reports estop = true.
-  virtual void read(DigitalInputs& in) = 0;
-  virtual void write(const DigitalOutputs& out) = 0;
+  // `error` when any line failed this call.
+  [[nodiscard]] virtual capture::IoStatus read(DigitalInputs& in) = 0;
+  [[nodiscard]] virtual capture::IoStatus write(const DigitalOutputs& out) = 0;
   // Line reads/writes that failed since start (readable from any thread).
   virtual std::uint64_t io_errors() const = 0;
 };

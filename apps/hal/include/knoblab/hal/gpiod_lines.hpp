@@ -34,8 +34,8 @@ class GpiodLines final : public DigitalLines {
   GpiodLines(const GpiodLines&) = delete;
   GpiodLines& operator=(const GpiodLines&) = delete;
 
-  void read(DigitalInputs& in) override;
-  void write(const DigitalOutputs& out) override;
+  capture::IoStatus read(DigitalInputs& in) override;
+  capture::IoStatus write(const DigitalOutputs& out) override;
   std::uint64_t io_errors() const override { return io_errors_.load(std::memory_order_relaxed); }
 
   // Where each role was found, for the startup log.
@@ -54,7 +54,7 @@ class GpiodLines final : public DigitalLines {
     int written = -1;  // last value written successfully (-1: unknown)
   };
   static constexpr std::size_t index(LineRole role) { return static_cast<std::size_t>(role); }
-  void set(Line& line, bool active);
+  bool set(Line& line, bool active);  // false: the write failed (retried next call)
 
   std::array<Line, 4> lines_;
   std::unique_ptr<gpiod_edge_event_buffer, BufferDeleter> events_;

@@ -16,8 +16,8 @@ class MemoryLines final : public DigitalLines {
   // The e-stop line starts low, i.e. asserted: like an unplugged cable.
   explicit MemoryLines(bool estop_asserted = true) : estop_level_high_(!estop_asserted) {}
 
-  void read(DigitalInputs& in) override;
-  void write(const DigitalOutputs& out) override;
+  capture::IoStatus read(DigitalInputs& in) override;
+  capture::IoStatus write(const DigitalOutputs& out) override;
   std::uint64_t io_errors() const override { return io_errors_.load(std::memory_order_relaxed); }
 
   // --- test side: inputs -------------------------------------------------

@@ -36,8 +36,8 @@
 #include "knoblab/capture/daq.hpp"
 #include "knoblab/capture/pid.hpp"
 #include "knoblab/capture/sample.hpp"
+#include "knoblab/capture/sensor_front_end.hpp"
 #include "knoblab/fit/calibration.hpp"
-#include "knoblab/model/filters.hpp"
 #include "knoblab/model/trajectory.hpp"
 
 namespace knoblab::hapticd {
@@ -56,8 +56,6 @@ struct CalibrationConfig {
   double sweep_seconds = 5.0;             // spatial / torque / accel_gain (thesis: 5 s)
   double gravity_seconds = 16.0;          // per direction: one revolution in this time
   double gravity_ramp_seconds = 0.5;      // velocity ramps (+ as long settling), not fitted
-  int velocity_filter_order = 10;         // as CaptureConfig
-  double velocity_cutoff_hz = 1000.0;
 };
 
 // What a run accumulated (trivially copyable; published by the loop).
@@ -95,12 +93,13 @@ class CalibrationController {
  public:
   // An empty controller (no run): cheap, so a default CoreCommand costs nothing.
   CalibrationController() = default;
-  // Designs the velocity filter (may allocate) and may throw
-  // std::invalid_argument (bad rate or durations): call it outside the loop.
+  // May throw std::invalid_argument (bad rate or durations): call it
+  // outside the loop.
   explicit CalibrationController(const CalibrationConfig& cfg);
 
-  // One cycle: raw inputs in, command out, the cycle's sample recorded.
-  void update(const capture::DaqInputs& in, capture::DaqOutputs& out, capture::Sample& sample);
+  // One cycle: the front end's readings in, command out, the cycle's sample
+  // recorded.
+  void update(const capture::SensorReading& in, capture::DaqOutputs& out, capture::Sample& sample);
   // After the supervisor: what was really sent (the next cycle's commanded
   // torque) and the sample's flags.
   void after_output(const capture::DaqOutputs& out, std::uint32_t flags);
@@ -124,10 +123,8 @@ class CalibrationController {
   CalibrationConfig cfg_;
   model::SweptSine stimulus_{};
   capture::Pid pid_;
-  model::SosCascade velocity_filter_;
   std::int64_t total_cycles_ = 0;
   std::int64_t cycle_ = 0;
-  double prev_theta_ = 0.0;
   double last_command_V_ = 0.0;
   CalibrationData data_{};
 };

@@ -5,12 +5,15 @@
 
 #include <cstdint>
 #include <mutex>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "knoblab/control/command_handler.hpp"
 #include "knoblab/control/server.hpp"
 #include "knoblab/hapticd/recorder.hpp"
 #include "knoblab/hapticd/render_params.hpp"
+#include "knoblab/hapticd/supervisor.hpp"
 
 namespace knoblab::hapticd {
 
@@ -20,6 +23,16 @@ class Daemon;
 // protocol schema) applied to `base`: load_model replaces the model
 // (partial = false), set_params changes only the keys given.
 RenderParams render_params_from_args(const nlohmann::json& args, RenderParams base, bool partial);
+
+// Why the device must not render `p`, or nullopt when it may: every value
+// finite, those the physics needs non-negative so, and no torque term that
+// alone exceeds the torque limit (the supervisor would clip it, so the knob
+// would not feel like the model the researcher asked for).
+struct ParamProblem {
+  std::string key;
+  std::string message;
+};
+std::optional<ParamProblem> render_params_problem(const RenderParams& p, const SafetyLimits& limits);
 
 class ControlHandler final : public control::CommandHandler {
  public:

@@ -1,7 +1,25 @@
 // HapticCore: what one loop cycle does, whatever paces it. The realtime
 // daemon runs it under rt::PeriodicLoop; `knoblab simulate` runs the same
 // object back to back in simulated time. Modes are small controllers (idle,
-// render, capture); the supervisor has the last word on every output.
+// render, capture, calibrate); the supervisor has the last word on every output.
+//
+// Modes and recordings are one state machine (every row is tested):
+//
+//   event               Idle / Render                Capture / Calibrate (a run)
+//   set_mode idle|render that mode                   ends the run (stopped), then that mode
+//   start_capture/-cal  the run starts (recording;   ignored: one run at a time
+//                       a trial recording ends first)
+//   stop_capture        nothing                      ends the run (stopped) → Idle
+//   start_trial         a recording starts           ignored (the run records)
+//   stop_trial          the recording ends           ignored
+//   run's last cycle    –                            ends the run (finished) → Idle
+//   a fault latches     → Idle; a recording ends     ends the run (fault) → Idle
+//                       (fault)
+//   while faulted       render, runs and trials are refused; clear_fault first
+//
+// A recording's last record says how it ended (LoopRecord::end). Commands that
+// end a run take effect at the end of the cycle they arrive in, so that cycle
+// is the run's last record and carries the reason.
 //
 // Threads: commands arrive from non-realtime code through a lock-free queue
 // (post()); state leaves through atomics (state()). cycle() never allocates,
@@ -14,6 +32,7 @@
 #include "knoblab/capture/capture_controller.hpp"
 #include "knoblab/capture/daq.hpp"
 #include "knoblab/capture/sample.hpp"
+#include "knoblab/capture/sensor_front_end.hpp"
 #include "knoblab/hapticd/calibration_controller.hpp"
 #include "knoblab/hapticd/render_controller.hpp"
 #include "knoblab/hapticd/supervisor.hpp"
@@ -49,6 +68,10 @@ struct CoreCommand {
   std::uint32_t faults = kFaultCommanded;  // ForceSafe: why (e.g. kFaultWatchdog)
 };
 
+// How a recording ended, on its last record (none on every other record).
+enum class RecordingEnd : std::uint8_t { none, finished, stopped, fault };
+const char* to_string(RecordingEnd e);
+
 // One loop cycle's record: the sample and whether it belongs to a recording.
 struct LoopRecord {
   capture::Sample sample;
@@ -57,6 +80,17 @@ struct LoopRecord {
   std::uint32_t recording_id = 0;  // 0: not recording; else which recording
   std::uint32_t faults = 0;        // Fault bits latched after this cycle's supervisor
   Mode mode = Mode::Idle;
+  RecordingEnd end = RecordingEnd::none;  // set on the last record of a recording
+};
+
+// What the world says this cycle besides the DAQ's readings.
+struct CycleContext {
+  LineInputs lines{};
+  std::int64_t consecutive_overruns = 0;
+  std::uint32_t external_faults = 0;  // Fault bits that hold now (the amplifier over Modbus)
+  // This cycle's DAQ and line reads, and the previous cycle's writes, all
+  // succeeded. Consecutive failures latch `io` (SafetyLimits).
+  bool io_ok = true;
 };
 
 struct CoreState {
@@ -70,7 +104,7 @@ struct CoreConfig {
   double rate_hz = 10000.0;
   capture::SensorCalibration calibration{};
   SafetyLimits limits{};
-  RenderConfig render{};  // rate and calibration are taken from above
+  RenderConfig render{};  // rate and torque per volt are taken from above
 };
 
 class HapticCore {
@@ -85,18 +119,22 @@ class HapticCore {
   CalibrationData last_calibration() const { return calibration_result_.read(); }
   std::uint64_t calibrations_finished() const { return calibration_result_.version(); }
 
-  // Realtime side: one cycle. `external_faults`: Fault bits that hold right
-  // now according to other parts (e.g. the amplifier's Modbus status).
-  void cycle(const capture::DaqInputs& in, const LineInputs& lines, std::int64_t consecutive_overruns,
-             std::uint32_t external_faults, capture::DaqOutputs& out, LoopRecord& record);
+  // Realtime side: one cycle.
+  void cycle(const capture::DaqInputs& in, const CycleContext& ctx, capture::DaqOutputs& out,
+             LoopRecord& record);
 
   const CoreConfig& config() const { return cfg_; }
 
  private:
   void apply(const CoreCommand& c);
-  void measure_idle(const capture::DaqInputs& in, capture::Sample& s);
+  bool running() const { return mode_ == Mode::Capture || mode_ == Mode::Calibrate; }
+  void begin_recording();
+  // Ends the open recording (and a run) on this cycle's record.
+  void end_recording(RecordingEnd why, LoopRecord& rec);
+  void measure_idle(const capture::SensorReading& in, capture::Sample& s);
 
   CoreConfig cfg_;
+  capture::SensorFrontEnd sensors_;  // every cycle, before the mode
   rt::SpscRing<CoreCommand, 16> commands_;
   CoreCommand pop_slot_{};  // where the loop receives commands
   RenderController render_;
@@ -109,6 +147,11 @@ class HapticCore {
   Mode mode_ = Mode::Idle;
   bool clear_requested_ = false;
   std::uint32_t forced_ = 0;
+  // A stop that arrived this cycle: applied after the cycle's record is made.
+  bool stop_pending_ = false;
+  Mode mode_after_stop_ = Mode::Idle;
+  bool stop_recording_pending_ = false;
+  int io_errors_in_a_row_ = 0;
   std::uint32_t recording_ = 0, next_recording_ = 1;
   std::int64_t cycles_ = 0;
   std::atomic<std::uint64_t> published_{0};  // mode | faults | recording, see state()

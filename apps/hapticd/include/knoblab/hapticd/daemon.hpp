@@ -53,7 +53,8 @@ class Daemon {
   Daemon& operator=(const Daemon&) = delete;
 
   // Runs the loop on its realtime thread until stop() (or max_cycles);
-  // returns the loop's result once everything recorded is committed.
+  // returns the loop's result once everything recorded is committed. Leaves
+  // the motor safe (zero command, enable low) however it returns or throws.
   rt::LoopResult run();
   void stop() { stop_.store(true); }
 
@@ -86,6 +87,7 @@ class Daemon {
 
  private:
   struct Impl;
+  class RunGuard;
   void writer_main();
   void publish_events(const std::vector<FinishedRecording>& finished);
 

@@ -1,13 +1,14 @@
 // Render mode: the knob feels like the rendering model of thesis Eq. 14 —
 // virtual-mass inertia (§3.3), damping, detents — plus the optional Karnopp
-// stick band (Eq. 7). Velocity through the 10th-order Butterworth of §1.2.2
-// ("Low Pass 1"), τ_acc through the 3-sample box ("Low Pass 2").
+// stick band (Eq. 7). Velocity is the front end's rendering filter (the
+// 10th-order Butterworth of §1.2.2 at 500 Hz, "Low Pass 1"), τ_acc goes
+// through the 3-sample box ("Low Pass 2").
 // Construction allocates; update() and set_params() never do.
 #pragma once
 
-#include "knoblab/capture/calibration.hpp"
 #include "knoblab/capture/daq.hpp"
 #include "knoblab/capture/sample.hpp"
+#include "knoblab/capture/sensor_front_end.hpp"
 #include "knoblab/hapticd/handoff.hpp"
 #include "knoblab/hapticd/param_ramp.hpp"
 #include "knoblab/hapticd/render_params.hpp"
@@ -26,10 +27,7 @@ struct TileSet {
 
 struct RenderConfig {
   double rate_hz = 10000.0;
-  capture::SensorCalibration calibration{};
   double torque_per_volt = 0.181 / 12.0;  // N·m per command volt (amplifier + motor)
-  int velocity_filter_order = 10;
-  double velocity_cutoff_hz = 500.0;  // Study 3 (§4.6): 500 Hz
 };
 
 class RenderController {
@@ -40,7 +38,7 @@ class RenderController {
   void set_params(const RenderParams& p, bool immediately = false);
   const RenderParams& target() const { return target_; }
 
-  // Forget the motion history (entering render mode).
+  // Start afresh from where the knob is (entering render mode).
   void reset();
 
   // Non-realtime: render these tiles on top of the model from the next
@@ -48,7 +46,7 @@ class RenderController {
   // handed over; retry shortly.
   bool load_tiles(std::unique_ptr<TileSet> tiles) { return tiles_.publish(std::move(tiles)); }
 
-  void update(const capture::DaqInputs& in, capture::DaqOutputs& out, capture::Sample& s);
+  void update(const capture::SensorReading& in, capture::DaqOutputs& out, capture::Sample& s);
 
  private:
   RenderConfig cfg_;
@@ -56,11 +54,9 @@ class RenderController {
   int ramp_cycles_;
   RenderParams target_{};
   ParamRamp M_, B_, A_, f_;  // f = detents per revolution = 1/P (0 = none)
-  model::SosCascade velocity_filter_;
   model::BoxFilter3 acc_box_;
   VirtualMass vm_;
-  bool have_prev_ = false;
-  double prev_theta_ = 0.0;
+  bool started_ = false;  // false: the next update places the virtual mass at the knob
   long long cycle_ = 0;
   Handoff<TileSet> tiles_;
   const TileSet* active_tiles_ = nullptr;

@@ -44,6 +44,10 @@ struct SafetyLimits {
   double torque_limit_Nm = 0.180;      // continuous (thesis §5.2.3: 180 mN·m)
   double velocity_limit_rad_s = 50.0;  // ≈ 8 rev/s: far above any hand or stimulus
   int max_consecutive_overruns = 10;
+  // This many cycles running with a failed DAQ or GPIO read/write latch `io`:
+  // one glitch is tolerated, a dead encoder (frozen angle, velocity 0, the
+  // velocity limit blind) is not.
+  int max_consecutive_io_errors = 3;
   double torque_per_volt = 0.181 / 12.0;  // to turn the torque limit into volts
 };
 
@@ -52,7 +56,9 @@ struct SafetyInputs {
   bool estop = false;
   std::uint32_t external_faults = 0;  // kFaultAmplifier / kFaultAmpComms / kFaultWatchdog …
   double omega = 0.0;                 // rad/s
+  bool sensors_finite = true;         // θ, α and torque of this cycle are all finite
   int consecutive_overruns = 0;
+  int consecutive_io_errors = 0;      // cycles running with a failed read or write
   bool clear_requested = false;
 };
 

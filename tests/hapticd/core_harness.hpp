@@ -1,0 +1,106 @@
+// HapticCore on the simulated camera, cycle by cycle, with every record kept:
+// the state-machine and fault-matrix tests drive it into a state, send one
+// event and look at the record of that cycle and the state after it.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+#include "knoblab/capture/sim_daq.hpp"
+#include "knoblab/hapticd/core.hpp"
+#include "knoblab/sim/presets.hpp"
+
+namespace knoblab::hapticd::testing {
+
+inline sim::PlantConfig plant_with(const char* knob) {
+  sim::PlantConfig p;
+  p.knob = *sim::presets::knob(knob);
+  return p;
+}
+
+class CoreHarness {
+ public:
+  static constexpr double kRate = 10000.0;
+
+  CoreHarness() : daq_(plant_with("moderate-detents"), kRate), core_(core_config(daq_)) {}
+
+  capture::SimDaq& daq() { return daq_; }
+  HapticCore& core() { return core_; }
+  CycleContext ctx;  // what the lines, Modbus and timing say from now on
+  bool torque_channel_nan = false;  // a broken conversion on the torque channel
+
+  void post(const CoreCommand& c) {
+    if (!core_.post(c)) throw std::runtime_error("core command queue full");
+  }
+  void command(CoreCommand::Kind kind, Mode mode = Mode::Idle) {
+    CoreCommand c;
+    c.kind = kind;
+    c.mode = mode;
+    post(c);
+  }
+  void set_render(double B_vel, double A_pos) {
+    CoreCommand c;
+    c.kind = CoreCommand::SetRender;
+    c.immediate = true;
+    c.render.B_vel = B_vel;
+    c.render.A_pos = A_pos;
+    c.render.P_pos = 1.0 / 12.0;
+    post(c);
+  }
+  void start_capture(std::int64_t cycles) {
+    CoreCommand c;
+    c.kind = CoreCommand::StartCapture;
+    capture::CaptureConfig cc;
+    cc.rate_hz = kRate;
+    c.capture = capture::CaptureController(cc);
+    c.capture_cycles = cycles;
+    post(c);
+  }
+  void start_calibration(double seconds) {
+    CoreCommand c;
+    c.kind = CoreCommand::StartCalibration;
+    CalibrationConfig cc;
+    cc.rate_hz = kRate;
+    cc.calibration = daq_.calibration();
+    cc.sweep_seconds = seconds;
+    c.calibration = CalibrationController(cc);
+    post(c);
+  }
+
+  // One cycle as the daemon runs it: read, cycle, write.
+  LoopRecord step() {
+    capture::DaqInputs in;
+    CycleContext c = ctx;
+    c.io_ok = ctx.io_ok && daq_.read(in) == capture::IoStatus::ok && writes_ok_;
+    if (torque_channel_nan) in.torque_V = std::numeric_limits<double>::quiet_NaN();
+    capture::DaqOutputs out;
+    LoopRecord rec;
+    core_.cycle(in, c, out, rec);
+    writes_ok_ = daq_.write(out) == capture::IoStatus::ok;  // judged next cycle, as the daemon does
+    last_out = out;
+    records.push_back(rec);
+    return rec;
+  }
+  void run(int cycles) {
+    for (int i = 0; i < cycles; ++i) step();
+  }
+
+  capture::DaqOutputs last_out{};
+  std::vector<LoopRecord> records;
+
+ private:
+  static CoreConfig core_config(const capture::SimDaq& daq) {
+    CoreConfig c;
+    c.rate_hz = kRate;
+    c.calibration = daq.calibration();
+    return c;
+  }
+
+  capture::SimDaq daq_;
+  HapticCore core_;
+  bool writes_ok_ = true;
+};
+
+}  // namespace knoblab::hapticd::testing
