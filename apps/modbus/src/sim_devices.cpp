@@ -60,11 +60,14 @@ SimDevices::~SimDevices() {
 
 SimDevices::Route SimDevices::route(int unit) const {
   const std::uint16_t* ctl = control_->tab_registers;
-  if (unit == config_.control_unit) return {control_, 0, false};
+  using std::chrono::milliseconds;
+  if (unit == config_.control_unit) return {control_, 0, false, milliseconds{0}};
   if (unit == config_.amplifier_unit)
-    return {amp_, sanitize_exception(ctl[simctl::kAmpException]), (ctl[simctl::kMute] & simctl::kMuteAmplifier) != 0};
+    return {amp_, sanitize_exception(ctl[simctl::kAmpException]), (ctl[simctl::kMute] & simctl::kMuteAmplifier) != 0,
+            milliseconds{ctl[simctl::kAmpReplyDelay]}};
   if (unit == config_.biometrics_unit)
-    return {bio_, sanitize_exception(ctl[simctl::kBioException]), (ctl[simctl::kMute] & simctl::kMuteBiometrics) != 0};
+    return {bio_, sanitize_exception(ctl[simctl::kBioException]), (ctl[simctl::kMute] & simctl::kMuteBiometrics) != 0,
+            milliseconds{ctl[simctl::kBioReplyDelay]}};
   return {};
 }
 

@@ -27,6 +27,7 @@ class SimDevices {
     modbus_mapping_t* mapping = nullptr;  // null: no such unit
     int exception = 0;                    // > 0: answer with this exception
     bool mute = false;                    // answer nothing
+    std::chrono::milliseconds delay{0};   // hold each reply back this long (a slow device)
   };
   Route route(int unit) const;
 
