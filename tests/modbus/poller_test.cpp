@@ -303,16 +303,43 @@ TEST_F(PollerTest, AThrowingConsumerDoesNotStopPolling) {
   EXPECT_NE(poller_->stats().last_error.find("disk full"), std::string::npos);
 }
 
-TEST_F(PollerTest, SwappedUnitIdsAreADeviceMismatch) {
+TEST_F(PollerTest, SwappedUnitIdsAreAnAmplifierMismatchThatCutsTorque) {
   PollerConfig c = local_config(sim_->port());
   c.amplifier.unit_id = kDefaultBiometricsUnit;
   c.biometrics.unit_id = kDefaultAmplifierUnit;
   start_poller(c);
-  ASSERT_TRUE(wait_for([&] { return has(poller_->status(), status::kDeviceMismatch); }, 500ms));
+  ASSERT_TRUE(wait_for([&] { return has(poller_->status(), status::kAmpMismatch); }, 500ms))
+      << status::describe(poller_->status());
   std::this_thread::sleep_for(100ms);
   EXPECT_TRUE(has(poller_->status(), status::kAmpCommsLost | status::kBiometricsLost));
+  EXPECT_NE(poller_->status() & status::kAmpTripMask & status::kAmpMismatch, 0u);
+  // The amp has too few registers for the box's read: an exception, not data.
+  EXPECT_TRUE(has(poller_->status(), status::kBiometricsException));
   EXPECT_TRUE(samples().empty());
   EXPECT_GT(poller_->stats().mismatches, 0u);
+}
+
+TEST_F(PollerTest, ABiometricsMapMismatchNeverCutsTorque) {
+  sim_->set_map_version(kDefaultBiometricsUnit, kMapVersion + 1);  // a box with other firmware
+  start_poller();
+  ASSERT_TRUE(wait_for([&] {
+    const auto w = poller_->status();
+    return has(w, status::kBiometricsMismatch) && (w & status::kAmpTripMask) == 0;
+  }, 2s)) << status::describe(poller_->status());
+  std::uint32_t tripped = 0, seen = ~0u;
+  const auto t0 = Clock::now();
+  while (Clock::now() - t0 < 500ms) {
+    const auto w = poller_->status();
+    tripped |= w & status::kAmpTripMask;
+    seen &= w;  // bits held throughout
+    std::this_thread::sleep_for(1ms);
+  }
+  EXPECT_EQ(tripped, 0u) << status::describe(tripped);
+  EXPECT_TRUE(has(seen, status::kBiometricsMismatch)) << status::describe(seen);
+  EXPECT_TRUE(samples().empty());  // nothing from the wrong device is used
+  const PollerStats st = poller_->stats();
+  EXPECT_GT(st.amp_reads, 0u);
+  EXPECT_NE(st.last_error.find("biometrics"), std::string::npos) << st.last_error;
 }
 
 }  // namespace

@@ -230,8 +230,7 @@ void Poller::poll_amplifier() {
   if (!r.ok()) return on_error(link, r, true);
   const auto now = Clock::now();
   const auto s = decode_amplifier(regs);
-  amp_mismatch_ = !s;
-  set_io_bit(status::kDeviceMismatch, amp_mismatch_ || bio_mismatch_);
+  set_io_bit(status::kAmpMismatch, !s);
   if (!s) return note_error(describe(config_.amplifier) + ": not a map-version-1 amplifier");
 
   link.backoff = config_.backoff_min;
@@ -258,8 +257,7 @@ void Poller::poll_biometrics() {
   if (!r.ok()) return on_error(link, r, false);
   const auto now = Clock::now();
   const auto snapshot = decode_biometrics(regs);
-  bio_mismatch_ = !snapshot;
-  set_io_bit(status::kDeviceMismatch, amp_mismatch_ || bio_mismatch_);
+  set_io_bit(status::kBiometricsMismatch, !snapshot);
   if (!snapshot) return note_error(describe(config_.biometrics) + ": not a map-version-1 biometrics box");
 
   link.backoff = config_.backoff_min;

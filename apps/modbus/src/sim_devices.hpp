@@ -46,6 +46,7 @@ class SimDevices {
   void update_amplifier(Clock::time_point now);
   void apply_amplifier_writes();
   void apply_control_writes(Clock::time_point now);
+  void apply_map_versions();
   void tick_biometrics(std::uint64_t n);
   double seconds(Clock::time_point t) const;
 

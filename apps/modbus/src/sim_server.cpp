@@ -328,6 +328,11 @@ void SimServer::set_reply_delay(int unit, std::chrono::milliseconds delay) {
   if (unit == config_.biometrics_unit) write_control(simctl::kBioReplyDelay, ms);
 }
 
+void SimServer::set_map_version(int unit, std::uint16_t version) {
+  if (unit == config_.amplifier_unit) write_control(simctl::kAmpMapVersion, version);
+  if (unit == config_.biometrics_unit) write_control(simctl::kBioMapVersion, version);
+}
+
 void SimServer::drop_connections(std::chrono::milliseconds refuse_for) {
   const auto ms = std::clamp<std::chrono::milliseconds::rep>(refuse_for.count(), 1, 0xFFFF);
   write_control(simctl::kDropConnections, static_cast<std::uint16_t>(ms));

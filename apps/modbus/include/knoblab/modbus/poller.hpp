@@ -149,8 +149,6 @@ class Poller {
   std::optional<std::uint32_t> last_counter_;
   bool commanded_enabled_ = false;
   Clock::time_point enabled_at_{};
-  bool amp_mismatch_ = false;
-  bool bio_mismatch_ = false;
 
   mutable std::mutex mutex_;  // queue_, stop_, stats_, last_amp_
   std::condition_variable wake_;

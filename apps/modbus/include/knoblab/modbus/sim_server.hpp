@@ -66,6 +66,8 @@ class SimServer {
   // Hold each reply of unit back this long (0..65535 ms; 0: prompt again).
   // Only that unit's connections wait: the others are served meanwhile.
   void set_reply_delay(int unit, std::chrono::milliseconds delay);
+  // The map version unit reports (another firmware); 0: the real one again.
+  void set_map_version(int unit, std::uint16_t version);
   void drop_connections(std::chrono::milliseconds refuse_for);
   void stimulus();
 
