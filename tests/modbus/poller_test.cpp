@@ -348,6 +348,7 @@ TEST_F(PollerTest, StopIsBoundedWhenTheServerHangs) {
   PollerConfig c = local_config(sim_->port());
   c.amplifier.response_timeout = 50ms;
   c.biometrics.response_timeout = 50ms;
+  c.comms_timeout = 100ms;  // above period + response timeout: one lost answer is no lost link
   start_poller(c);
   wait_healthy();
   sim_->set_mute(simctl::kMuteAmplifier | simctl::kMuteBiometrics);

@@ -25,24 +25,6 @@ std::int64_t ns_of(std::chrono::steady_clock::time_point t) {
 
 std::int64_t ns_of(Millis d) { return std::chrono::duration_cast<std::chrono::nanoseconds>(d).count(); }
 
-void check(const PollerConfig& c) {
-  auto fail = [](const std::string& why) { throw std::invalid_argument("modbus poller: " + why); };
-  for (const auto* e : {&c.amplifier, &c.biometrics}) {
-    if (auto problem = validate(*e)) fail(describe(*e) + ": " + *problem);
-  }
-  if (!c.poll_amplifier && !c.poll_biometrics) fail("nothing to poll");
-  if (c.amplifier_period.count() <= 0) fail("amplifier_period must be positive");
-  if (c.biometrics_period.count() <= 0 || c.biometrics_period > Millis{15})
-    fail("biometrics_period must be 1..15 ms (>= 64 Hz, twice the box's 32 Hz)");
-  if (c.comms_timeout <= c.amplifier_period) fail("comms_timeout must exceed amplifier_period");
-  if (c.stale_periods < 1) fail("stale_periods must be >= 1");
-  if (c.backoff_min.count() <= 0 || c.backoff_max < c.backoff_min) fail("bad reconnect backoff");
-  if (c.poll_amplifier && c.poll_biometrics && c.amplifier.kind == Transport::rtu &&
-      transport_key(c.amplifier) == transport_key(c.biometrics) &&
-      c.amplifier.unit_id == c.biometrics.unit_id)
-    fail("amplifier and biometrics share an RTU bus and a unit id");
-}
-
 }  // namespace
 
 // One transport: a connection plus its reconnect schedule.
@@ -53,7 +35,10 @@ struct Poller::Link {
 };
 
 Poller::Poller(PollerConfig config) : config_(std::move(config)), status_(kLinksLost) {
-  check(config_);
+  if (auto problem = validate(config_)) {
+    const std::string setting = problem->setting.empty() ? "" : problem->setting + ": ";
+    throw std::invalid_argument("modbus poller: " + setting + problem->why);
+  }
   auto link_for = [this](const ModbusEndpoint& e) -> Link* {
     for (auto& l : links_) {
       if (transport_key(l->connection->endpoint()) == transport_key(e)) return l.get();

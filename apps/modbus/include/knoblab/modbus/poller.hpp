@@ -45,6 +45,8 @@ struct PollerConfig {
 
   Millis amplifier_period{10};   // 100 Hz
   Millis biometrics_period{10};  // must be <= 15 ms: >= 64 Hz, twice the box's 32 Hz
+  // Each watchdog must exceed its device's period + response_timeout, or one
+  // unanswered request would raise it (validate(), below).
   Millis comms_timeout{50};      // no fresh amp read for this long -> kAmpCommsLost
   Millis biometrics_timeout{100};// no biometrics read for this long -> kBiometricsLost
   int stale_periods = 3;         // counter still for more sample periods -> kBiometricsStale
@@ -68,6 +70,20 @@ struct PollerConfig {
     return e;
   }
 };
+
+// A PollerConfig setting that cannot work: its member path
+// ("amplifier.response_timeout", "comms_timeout"; empty for the whole) and why.
+struct PollerConfigProblem {
+  std::string setting;
+  std::string why;
+};
+
+// The first problem with c, or nullopt: the endpoints (validate(endpoint)),
+// the periods, and the timing rules: period + response_timeout below the
+// device's watchdog; devices on one RTU bus at distinct unit ids with the
+// same line settings and response timeout. Poller's constructor throws
+// std::invalid_argument("modbus poller: SETTING: WHY") for it. docs/modbus.md.
+std::optional<PollerConfigProblem> validate(const PollerConfig& c);
 
 struct PollerStats {
   std::uint64_t amp_reads = 0, amp_errors = 0, amp_exceptions = 0;
