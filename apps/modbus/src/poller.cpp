@@ -69,7 +69,7 @@ void Poller::start() {
   // comms_timeout. Both devices on one link (two units on one RTU bus) stay
   // on one thread: the line carries one request at a time, so a second
   // thread would only queue behind the first, and a libmodbus context must
-  // not be used from two threads. check() counts that wait against the
+  // not be used from two threads. validate() counts that wait against the
   // watchdogs.
   const bool shared = amp_link_ != nullptr && amp_link_ == bio_link_;
   if (amp_link_) amp_thread_ = std::thread([this, shared] { run(true, shared); });

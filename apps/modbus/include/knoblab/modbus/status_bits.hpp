@@ -20,7 +20,7 @@ inline constexpr std::uint32_t kAmpMismatch = 1u << 7;          // the amp's uni
 inline constexpr std::uint32_t kBiometricsMismatch = 1u << 10;  // the box's unit id answers with another map or device
 
 inline constexpr std::uint32_t kAmpEnabled = 1u << 8;  // amp reports its output stage on
-inline constexpr std::uint32_t kRunning = 1u << 9;     // the poller thread is running
+inline constexpr std::uint32_t kRunning = 1u << 9;     // the poller is running
 
 inline constexpr std::uint32_t kProblemMask = kAmpFault | kAmpCommsLost | kAmpDisabledUnexpectedly |
                                               kBiometricsLost | kBiometricsStale | kAmpException |
