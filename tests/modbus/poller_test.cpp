@@ -273,10 +273,82 @@ TEST_F(PollerTest, FrozenAmplifierHeartbeatCountsAsCommsLost) {
   wait_healthy();
 }
 
+// Figures for a stalled box on a loaded 2-core machine: the 200 ms amp
+// watchdog trips only if the amplifier thread itself starves that long,
+// while a biometrics request left waiting 500..800 ms would trip it every
+// time if amplifier reads had to wait behind it.
+PollerConfig stall_tolerant_config(std::uint16_t port) {
+  PollerConfig c = local_config(port);
+  c.comms_timeout = 200ms;
+  c.biometrics.response_timeout = 800ms;
+  c.biometrics_timeout = 2000ms;
+  return c;
+}
+
+TEST_F(PollerTest, ASlowBiometricsBoxNeverDelaysAmplifierReads) {
+  const PollerConfig c = stall_tolerant_config(sim_->port());
+  start_poller(c);
+  wait_healthy();
+  constexpr auto kReplyDelay = 500ms;  // each box answer, inside its 800 ms response timeout
+  sim_->set_reply_delay(kDefaultBiometricsUnit, kReplyDelay);
+  const PollerStats before = poller_->stats();
+  std::uint32_t tripped = 0;
+  const auto t0 = Clock::now();
+  while (Clock::now() - t0 < 2s) {
+    tripped |= poller_->status() & status::kAmpTripMask;
+    std::this_thread::sleep_for(1ms);
+  }
+  const PollerStats after = poller_->stats();
+  EXPECT_EQ(tripped, 0u) << status::describe(tripped);
+  // 2 s at 100 Hz is 200 reads; a quarter of that survives any scheduler,
+  // while waiting behind the box would allow only about one per reply.
+  EXPECT_GT(after.amp_reads - before.amp_reads, 2s / c.amplifier_period / 4);
+  // The box was polled all along, slowly: not a vacuous pass.
+  EXPECT_GE(after.bio_reads - before.bio_reads, 1u);
+  EXPECT_LE(after.bio_reads - before.bio_reads, 2s / kReplyDelay + 2);
+
+  sim_->set_reply_delay(kDefaultBiometricsUnit, 0ms);
+  wait_healthy();
+}
+
+TEST_F(PollerTest, AHungBiometricsBoxNeverDelaysAmplifierReadsOrCommands) {
+  const PollerConfig c = stall_tolerant_config(sim_->port());
+  start_poller(c);
+  wait_healthy();
+  sim_->set_mute(simctl::kMuteBiometrics);  // connected, never answers
+  ASSERT_TRUE(wait_for([&] { return has(poller_->status(), status::kBiometricsLost); }, 5s));
+  const PollerStats before = poller_->stats();
+  std::uint32_t tripped = 0;
+  auto watch = [&](std::chrono::milliseconds d) {
+    const auto t0 = Clock::now();
+    while (Clock::now() - t0 < d) {
+      tripped |= poller_->status() & status::kAmpTripMask;
+      std::this_thread::sleep_for(1ms);
+    }
+  };
+  ASSERT_TRUE(poller_->enable());
+  ASSERT_TRUE(wait_for([&] { return has(poller_->status(), status::kAmpEnabled); }, 2s));
+  watch(1s);
+  ASSERT_TRUE(poller_->disable());
+  ASSERT_TRUE(wait_for([&] { return !has(poller_->status(), status::kAmpEnabled); }, 2s));
+  watch(1s);
+  const PollerStats after = poller_->stats();
+  EXPECT_EQ(tripped, 0u) << status::describe(tripped);
+  EXPECT_GT(after.amp_reads - before.amp_reads, 2s / c.amplifier_period / 4);
+  EXPECT_EQ(after.commands_done - before.commands_done, 2u);
+  EXPECT_EQ(after.commands_failed, 0u);
+  EXPECT_GT(after.bio_errors, before.bio_errors);  // the box was tried all along
+  EXPECT_TRUE(has(poller_->status(), status::kBiometricsLost));
+
+  sim_->set_mute(0);
+  wait_healthy();
+}
+
 TEST_F(PollerTest, StopIsBoundedWhenTheServerHangs) {
   PollerConfig c = local_config(sim_->port());
   c.amplifier.response_timeout = 50ms;
   c.biometrics.response_timeout = 50ms;
+  c.comms_timeout = 100ms;  // above period + response timeout: one lost answer is no lost link
   start_poller(c);
   wait_healthy();
   sim_->set_mute(simctl::kMuteAmplifier | simctl::kMuteBiometrics);
@@ -303,16 +375,43 @@ TEST_F(PollerTest, AThrowingConsumerDoesNotStopPolling) {
   EXPECT_NE(poller_->stats().last_error.find("disk full"), std::string::npos);
 }
 
-TEST_F(PollerTest, SwappedUnitIdsAreADeviceMismatch) {
+TEST_F(PollerTest, SwappedUnitIdsAreAnAmplifierMismatchThatCutsTorque) {
   PollerConfig c = local_config(sim_->port());
   c.amplifier.unit_id = kDefaultBiometricsUnit;
   c.biometrics.unit_id = kDefaultAmplifierUnit;
   start_poller(c);
-  ASSERT_TRUE(wait_for([&] { return has(poller_->status(), status::kDeviceMismatch); }, 500ms));
+  ASSERT_TRUE(wait_for([&] { return has(poller_->status(), status::kAmpMismatch); }, 500ms))
+      << status::describe(poller_->status());
   std::this_thread::sleep_for(100ms);
   EXPECT_TRUE(has(poller_->status(), status::kAmpCommsLost | status::kBiometricsLost));
+  EXPECT_NE(poller_->status() & status::kAmpTripMask & status::kAmpMismatch, 0u);
+  // The amp has too few registers for the box's read: an exception, not data.
+  EXPECT_TRUE(has(poller_->status(), status::kBiometricsException));
   EXPECT_TRUE(samples().empty());
   EXPECT_GT(poller_->stats().mismatches, 0u);
+}
+
+TEST_F(PollerTest, ABiometricsMapMismatchNeverCutsTorque) {
+  sim_->set_map_version(kDefaultBiometricsUnit, kMapVersion + 1);  // a box with other firmware
+  start_poller();
+  ASSERT_TRUE(wait_for([&] {
+    const auto w = poller_->status();
+    return has(w, status::kBiometricsMismatch) && (w & status::kAmpTripMask) == 0;
+  }, 2s)) << status::describe(poller_->status());
+  std::uint32_t tripped = 0, seen = ~0u;
+  const auto t0 = Clock::now();
+  while (Clock::now() - t0 < 500ms) {
+    const auto w = poller_->status();
+    tripped |= w & status::kAmpTripMask;
+    seen &= w;  // bits held throughout
+    std::this_thread::sleep_for(1ms);
+  }
+  EXPECT_EQ(tripped, 0u) << status::describe(tripped);
+  EXPECT_TRUE(has(seen, status::kBiometricsMismatch)) << status::describe(seen);
+  EXPECT_TRUE(samples().empty());  // nothing from the wrong device is used
+  const PollerStats st = poller_->stats();
+  EXPECT_GT(st.amp_reads, 0u);
+  EXPECT_NE(st.last_error.find("biometrics"), std::string::npos) << st.last_error;
 }
 
 }  // namespace

@@ -32,12 +32,13 @@ namespace {
 // above ordinary work, never in the loop's way.
 constexpr int kPollerPriorityBelowLoop = 30;
 
-// Amplifier status over Modbus → the supervisor's fault bits.
+// Amplifier status over Modbus → the supervisor's fault bits. Biometrics
+// problems are not faults: the box never stops the motor.
 std::uint32_t faults_from_modbus(std::uint32_t word) {
   std::uint32_t f = 0;
   if (word & modbus::status::kAmpFault) f |= kFaultAmplifier;
   if (word & (modbus::status::kAmpCommsLost | modbus::status::kAmpDisabledUnexpectedly |
-              modbus::status::kDeviceMismatch))
+              modbus::status::kAmpMismatch))
     f |= kFaultAmpComms;
   return f;
 }

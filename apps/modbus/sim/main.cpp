@@ -30,6 +30,8 @@ constexpr const char* kUsage = R"(usage: knoblab-modbus-sim [options]
                       exception=CODE[:amp|bio][@S]
                       stale-after=S[:bio|amp|all]
                       amp-fault-after=S:BITS
+                      slow=MS[:amp|bio][@S]
+                      hang-after=S[:bio|amp|all]
 Register maps and the control block: docs/modbus.md.
 )";
 

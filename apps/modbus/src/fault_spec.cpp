@@ -140,6 +140,31 @@ std::optional<FaultAction> parse_fault(std::string_view spec, std::string* error
     }
     return a;
   }
+  if (key == "slow") {
+    a.kind = FaultAction::Kind::slow;
+    const auto [what, when] = split(value, '@');
+    const auto [delay, unit] = split(what, ':');
+    const auto ms = parse_number(delay);
+    if (!ms || *ms < 1 || *ms > 65535) return fail("reply delay must be 1..65535 ms");
+    a.reply_delay = std::chrono::milliseconds(*ms);
+    if (!unit.empty() && !parse_target(unit, a)) return fail("unit must be amp, bio, all, 1 or 2");
+    if (!when.empty()) {
+      const auto at = parse_seconds(when);
+      if (!at) return fail("expected seconds after '@'");
+      a.at_seconds = *at;
+    }
+    return a;
+  }
+  if (key == "hang-after") {
+    a.kind = FaultAction::Kind::hang;
+    const auto [when, target] = split(value, ':');
+    const auto at = parse_seconds(when);
+    if (!at) return fail("expected seconds");
+    a.at_seconds = *at;
+    a.to_amplifier = false;
+    if (!target.empty() && !parse_target(target, a)) return fail("target must be bio, amp or all");
+    return a;
+  }
   if (key == "stale-after") {
     a.kind = FaultAction::Kind::stale;
     const auto [when, target] = split(value, ':');

@@ -25,24 +25,6 @@ std::int64_t ns_of(std::chrono::steady_clock::time_point t) {
 
 std::int64_t ns_of(Millis d) { return std::chrono::duration_cast<std::chrono::nanoseconds>(d).count(); }
 
-void check(const PollerConfig& c) {
-  auto fail = [](const std::string& why) { throw std::invalid_argument("modbus poller: " + why); };
-  for (const auto* e : {&c.amplifier, &c.biometrics}) {
-    if (auto problem = validate(*e)) fail(describe(*e) + ": " + *problem);
-  }
-  if (!c.poll_amplifier && !c.poll_biometrics) fail("nothing to poll");
-  if (c.amplifier_period.count() <= 0) fail("amplifier_period must be positive");
-  if (c.biometrics_period.count() <= 0 || c.biometrics_period > Millis{15})
-    fail("biometrics_period must be 1..15 ms (>= 64 Hz, twice the box's 32 Hz)");
-  if (c.comms_timeout <= c.amplifier_period) fail("comms_timeout must exceed amplifier_period");
-  if (c.stale_periods < 1) fail("stale_periods must be >= 1");
-  if (c.backoff_min.count() <= 0 || c.backoff_max < c.backoff_min) fail("bad reconnect backoff");
-  if (c.poll_amplifier && c.poll_biometrics && c.amplifier.kind == Transport::rtu &&
-      transport_key(c.amplifier) == transport_key(c.biometrics) &&
-      c.amplifier.unit_id == c.biometrics.unit_id)
-    fail("amplifier and biometrics share an RTU bus and a unit id");
-}
-
 }  // namespace
 
 // One transport: a connection plus its reconnect schedule.
@@ -53,7 +35,10 @@ struct Poller::Link {
 };
 
 Poller::Poller(PollerConfig config) : config_(std::move(config)), status_(kLinksLost) {
-  check(config_);
+  if (auto problem = validate(config_)) {
+    const std::string setting = problem->setting.empty() ? "" : problem->setting + ": ";
+    throw std::invalid_argument("modbus poller: " + setting + problem->why);
+  }
   auto link_for = [this](const ModbusEndpoint& e) -> Link* {
     for (auto& l : links_) {
       if (transport_key(l->connection->endpoint()) == transport_key(e)) return l.get();
@@ -79,7 +64,16 @@ void Poller::start() {
     running_ = true;
     stop_ = false;
   }
-  io_thread_ = std::thread([this] { run(); });
+  // The amplifier has a thread of its own so that nothing the box does (slow
+  // answers, a hung peer, a long on_sample) holds its reads past
+  // comms_timeout. Both devices on one link (two units on one RTU bus) stay
+  // on one thread: the line carries one request at a time, so a second
+  // thread would only queue behind the first, and a libmodbus context must
+  // not be used from two threads. validate() counts that wait against the
+  // watchdogs.
+  const bool shared = amp_link_ != nullptr && amp_link_ == bio_link_;
+  if (amp_link_) amp_thread_ = std::thread([this, shared] { run(true, shared); });
+  if (bio_link_ && !shared) bio_thread_ = std::thread([this] { run(false, true); });
   supervisor_thread_ = std::thread([this] { supervise(); });
 }
 
@@ -90,11 +84,13 @@ void Poller::stop() {
     stop_ = true;
   }
   wake_.notify_all();
-  if (io_thread_.joinable()) io_thread_.join();
-  if (supervisor_thread_.joinable()) supervisor_thread_.join();
+  for (std::thread* t : {&amp_thread_, &bio_thread_, &supervisor_thread_}) {
+    if (t->joinable()) t->join();
+  }
   for (auto& l : links_) l->connection->close();
   status_.store(kLinksLost | (io_bits_.load() & status::kAmpFault), std::memory_order_release);
   std::lock_guard lock(mutex_);
+  queue_.clear();  // not for a later start(): the operator's intent may have changed
   running_ = false;
 }
 
@@ -130,7 +126,7 @@ std::optional<AmplifierStatus> Poller::amplifier() const {
   return last_amp_;
 }
 
-// ---- poller thread ---------------------------------------------------------
+// ---- polling threads -------------------------------------------------------
 
 void Poller::raise_priority() {
   if (config_.priority <= 0) return;
@@ -147,7 +143,7 @@ void Poller::raise_priority() {
   }
 }
 
-void Poller::run() {
+void Poller::run(bool amplifier, bool biometrics) {
   raise_priority();
   auto next_amp = Clock::now();
   auto next_bio = next_amp;
@@ -157,23 +153,28 @@ void Poller::run() {
     if (const auto now = Clock::now(); next < now) next = now;
   };
   for (;;) {
-    run_commands();
+    if (amplifier) run_commands();
     const auto now = Clock::now();
-    if (amp_link_ && now >= next_amp) {
+    if (amplifier && now >= next_amp) {
       poll_amplifier();
       advance(next_amp, config_.amplifier_period);
     }
-    if (bio_link_ && now >= next_bio) {
+    if (biometrics && now >= next_bio) {
       poll_biometrics();
       advance(next_bio, config_.biometrics_period);
     }
     auto wake_at = Clock::now() + Millis{100};
-    if (amp_link_) wake_at = std::min(wake_at, next_amp);
-    if (bio_link_) wake_at = std::min(wake_at, next_bio);
+    if (amplifier) wake_at = std::min(wake_at, next_amp);
+    if (biometrics) wake_at = std::min(wake_at, next_bio);
     std::unique_lock lock(mutex_);
-    wake_.wait_until(lock, wake_at, [this] { return stop_ || !queue_.empty(); });
+    wake_.wait_until(lock, wake_at, [&] { return stop_ || (amplifier && !queue_.empty()); });
     if (stop_) return;
   }
+}
+
+bool Poller::stopping() const {
+  std::lock_guard lock(mutex_);
+  return stop_;
 }
 
 bool Poller::ensure_open(Link& link, Clock::time_point now) {
@@ -230,8 +231,7 @@ void Poller::poll_amplifier() {
   if (!r.ok()) return on_error(link, r, true);
   const auto now = Clock::now();
   const auto s = decode_amplifier(regs);
-  amp_mismatch_ = !s;
-  set_io_bit(status::kDeviceMismatch, amp_mismatch_ || bio_mismatch_);
+  set_io_bit(status::kAmpMismatch, !s);
   if (!s) return note_error(describe(config_.amplifier) + ": not a map-version-1 amplifier");
 
   link.backoff = config_.backoff_min;
@@ -258,8 +258,7 @@ void Poller::poll_biometrics() {
   if (!r.ok()) return on_error(link, r, false);
   const auto now = Clock::now();
   const auto snapshot = decode_biometrics(regs);
-  bio_mismatch_ = !snapshot;
-  set_io_bit(status::kDeviceMismatch, amp_mismatch_ || bio_mismatch_);
+  set_io_bit(status::kBiometricsMismatch, !snapshot);
   if (!snapshot) return note_error(describe(config_.biometrics) + ": not a map-version-1 biometrics box");
 
   link.backoff = config_.backoff_min;
@@ -278,7 +277,7 @@ void Poller::poll_biometrics() {
     if (!config_.on_sample) continue;
     try {
       config_.on_sample(sample);
-    } catch (const std::exception& e) {  // a consumer bug must not kill the poller thread
+    } catch (const std::exception& e) {  // a consumer bug must not kill the polling thread
       std::lock_guard lock(mutex_);
       stats_.last_error = std::string("on_sample threw: ") + e.what();
     }
@@ -298,6 +297,7 @@ void Poller::run_commands() {
   }
   if (pending.empty()) return;
   for (const AmpCommand& c : pending) {
+    if (stopping()) return;  // a hung amp would hold stop() one response timeout per command
     const bool ok = execute(c);
     std::lock_guard lock(mutex_);
     ++(ok ? stats_.commands_done : stats_.commands_failed);

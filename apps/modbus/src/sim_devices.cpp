@@ -60,11 +60,14 @@ SimDevices::~SimDevices() {
 
 SimDevices::Route SimDevices::route(int unit) const {
   const std::uint16_t* ctl = control_->tab_registers;
-  if (unit == config_.control_unit) return {control_, 0, false};
+  using std::chrono::milliseconds;
+  if (unit == config_.control_unit) return {control_, 0, false, milliseconds{0}};
   if (unit == config_.amplifier_unit)
-    return {amp_, sanitize_exception(ctl[simctl::kAmpException]), (ctl[simctl::kMute] & simctl::kMuteAmplifier) != 0};
+    return {amp_, sanitize_exception(ctl[simctl::kAmpException]), (ctl[simctl::kMute] & simctl::kMuteAmplifier) != 0,
+            milliseconds{ctl[simctl::kAmpReplyDelay]}};
   if (unit == config_.biometrics_unit)
-    return {bio_, sanitize_exception(ctl[simctl::kBioException]), (ctl[simctl::kMute] & simctl::kMuteBiometrics) != 0};
+    return {bio_, sanitize_exception(ctl[simctl::kBioException]), (ctl[simctl::kMute] & simctl::kMuteBiometrics) != 0,
+            milliseconds{ctl[simctl::kBioReplyDelay]}};
   return {};
 }
 
@@ -76,6 +79,16 @@ void SimDevices::advance(Clock::time_point now) {
   update_amplifier(now);
   const auto due = static_cast<std::uint64_t>((now - start_) / kSamplePeriod);
   while (ticks_ < due) tick_biometrics(++ticks_);
+  apply_map_versions();
+}
+
+// The encoders write the real map version; the control block may claim
+// another firmware. Applied after every update, so every answer shows it.
+void SimDevices::apply_map_versions() {
+  const std::uint16_t* ctl = control_->tab_registers;
+  auto version = [](std::uint16_t claimed) { return claimed != 0 ? claimed : kMapVersion; };
+  amp_->tab_input_registers[ident::kMapVersion] = version(ctl[simctl::kAmpMapVersion]);
+  bio_->tab_input_registers[ident::kMapVersion] = version(ctl[simctl::kBioMapVersion]);
 }
 
 void SimDevices::tick_biometrics(std::uint64_t n) {
@@ -149,6 +162,7 @@ void SimDevices::after_request(int unit, Clock::time_point now) {
   if (unit == config_.control_unit) apply_control_writes(now);
   // Writes to the amp (or injected faults) show in the very next read.
   if (unit == config_.control_unit || unit == config_.amplifier_unit) update_amplifier(now);
+  apply_map_versions();
 }
 
 std::optional<std::chrono::milliseconds> SimDevices::take_drop_request() {

@@ -27,6 +27,7 @@ class SimDevices {
     modbus_mapping_t* mapping = nullptr;  // null: no such unit
     int exception = 0;                    // > 0: answer with this exception
     bool mute = false;                    // answer nothing
+    std::chrono::milliseconds delay{0};   // hold each reply back this long (a slow device)
   };
   Route route(int unit) const;
 
@@ -45,6 +46,7 @@ class SimDevices {
   void update_amplifier(Clock::time_point now);
   void apply_amplifier_writes();
   void apply_control_writes(Clock::time_point now);
+  void apply_map_versions();
   void tick_biometrics(std::uint64_t n);
   double seconds(Clock::time_point t) const;
 

@@ -13,6 +13,7 @@
 #include <array>
 #include <cerrno>
 #include <cstring>
+#include <optional>
 #include <span>
 
 #include "knoblab/modbus/mbap.hpp"
@@ -43,6 +44,9 @@ struct SimServer::Client {
   Clock::time_point last_frame{};        // last complete request (or connect)
   Clock::time_point partial_since{};     // first byte of the unfinished frame
   bool closed = false;
+  // A complete request to a slow unit waits here for its reply time; until
+  // then nothing more is read from this client (answers stay in order).
+  std::optional<Clock::time_point> answer_at;
 };
 
 SimServer::SimServer(SimConfig config) : config_(std::move(config)) {}
@@ -104,6 +108,7 @@ void SimServer::run() {
     FD_SET(listen_fd_, &readable);
     int max_fd = listen_fd_;
     for (const auto& c : clients_) {
+      if (c->answer_at) continue;  // held for a slow reply
       FD_SET(c->fd, &readable);
       max_fd = std::max(max_fd, c->fd);
     }
@@ -117,8 +122,11 @@ void SimServer::run() {
     apply_schedule(now);
     if (ready > 0) {
       for (auto& c : clients_) {
-        if (!c->closed && FD_ISSET(c->fd, &readable)) serve_client(*c, now);
+        if (!c->closed && !c->answer_at && FD_ISSET(c->fd, &readable)) serve_client(*c, now);
       }
+    }
+    for (auto& c : clients_) {
+      if (!c->closed && c->answer_at && now >= *c->answer_at) answer_frames(*c, now);
     }
     if (auto refuse = devices_->take_drop_request()) {
       refuse_until_ = now + *refuse;
@@ -127,7 +135,7 @@ void SimServer::run() {
     for (auto& c : clients_) {
       const bool idle = now - c->last_frame > config_.idle_timeout;
       const bool stuck = c->length > 0 && now - c->partial_since > config_.partial_frame_timeout;
-      if (!c->closed && (idle || stuck)) {
+      if (!c->closed && !c->answer_at && (idle || stuck)) {  // a held request is the server's wait
         c->closed = true;
         ++counters_.dropped;
       }
@@ -178,6 +186,10 @@ void SimServer::serve_client(Client& c, Clock::time_point now) {
   }
   if (c.length == 0) c.partial_since = now;
   c.length += static_cast<std::size_t>(got);
+  answer_frames(c, now);
+}
+
+void SimServer::answer_frames(Client& c, Clock::time_point now) {
   for (;;) {
     std::size_t frame_length = 0;
     const auto header = mbap::check_header({c.buffer.data(), c.length}, frame_length);
@@ -188,6 +200,16 @@ void SimServer::serve_client(Client& c, Clock::time_point now) {
       return;
     }
     if (header == mbap::Header::incomplete) return;
+    if (!c.answer_at) {
+      const auto delay = devices_->route(c.buffer[mbap::kHeaderLength - 1]).delay;
+      if (delay.count() > 0) {
+        c.answer_at = now + delay;
+        return;
+      }
+    } else if (now < *c.answer_at) {
+      return;
+    }
+    c.answer_at.reset();
     answer(c, c.buffer.data(), frame_length, now);
     if (c.closed) return;
     std::memmove(c.buffer.data(), c.buffer.data() + frame_length, c.length - frame_length);
@@ -267,6 +289,16 @@ void SimServer::apply_schedule(Clock::time_point now) {
       case FaultAction::Kind::amp_fault:
         devices_->control(simctl::kAmpFaultInject) |= f.fault_bits;
         break;
+      case FaultAction::Kind::slow: {
+        const auto ms = static_cast<std::uint16_t>(f.reply_delay.count());
+        if (f.to_amplifier) devices_->control(simctl::kAmpReplyDelay) = ms;
+        if (f.to_biometrics) devices_->control(simctl::kBioReplyDelay) = ms;
+        break;
+      }
+      case FaultAction::Kind::hang:
+        devices_->control(simctl::kMute) |= static_cast<std::uint16_t>(
+            (f.to_amplifier ? simctl::kMuteAmplifier : 0) | (f.to_biometrics ? simctl::kMuteBiometrics : 0));
+        break;
     }
     devices_->after_request(config_.control_unit, now);
   }
@@ -289,6 +321,17 @@ void SimServer::set_freeze(std::uint16_t bits) { write_control(simctl::kFreeze, 
 void SimServer::set_amp_fault(std::uint16_t bits) { write_control(simctl::kAmpFaultInject, bits); }
 void SimServer::set_mute(std::uint16_t bits) { write_control(simctl::kMute, bits); }
 void SimServer::stimulus() { write_control(simctl::kStimulus, 1); }
+
+void SimServer::set_reply_delay(int unit, std::chrono::milliseconds delay) {
+  const auto ms = static_cast<std::uint16_t>(std::clamp<std::chrono::milliseconds::rep>(delay.count(), 0, 0xFFFF));
+  if (unit == config_.amplifier_unit) write_control(simctl::kAmpReplyDelay, ms);
+  if (unit == config_.biometrics_unit) write_control(simctl::kBioReplyDelay, ms);
+}
+
+void SimServer::set_map_version(int unit, std::uint16_t version) {
+  if (unit == config_.amplifier_unit) write_control(simctl::kAmpMapVersion, version);
+  if (unit == config_.biometrics_unit) write_control(simctl::kBioMapVersion, version);
+}
 
 void SimServer::drop_connections(std::chrono::milliseconds refuse_for) {
   const auto ms = std::clamp<std::chrono::milliseconds::rep>(refuse_for.count(), 1, 0xFFFF);

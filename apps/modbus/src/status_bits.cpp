@@ -6,7 +6,7 @@
 namespace knoblab::modbus::status {
 
 std::string describe(std::uint32_t word) {
-  static constexpr std::array<std::pair<std::uint32_t, const char*>, 10> names{{
+  static constexpr std::array<std::pair<std::uint32_t, const char*>, 11> names{{
       {kAmpFault, "amp-fault"},
       {kAmpCommsLost, "amp-comms-lost"},
       {kAmpDisabledUnexpectedly, "amp-disabled-unexpectedly"},
@@ -14,7 +14,8 @@ std::string describe(std::uint32_t word) {
       {kBiometricsStale, "biometrics-stale"},
       {kAmpException, "amp-exception"},
       {kBiometricsException, "biometrics-exception"},
-      {kDeviceMismatch, "device-mismatch"},
+      {kAmpMismatch, "amp-mismatch"},
+      {kBiometricsMismatch, "biometrics-mismatch"},
       {kAmpEnabled, "amp-enabled"},
       {kRunning, "running"},
   }};

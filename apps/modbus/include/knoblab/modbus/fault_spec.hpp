@@ -17,6 +17,11 @@
 //                                    '+': over-current, over-temperature,
 //                                    under-voltage, over-voltage, motor-short,
 //                                    feedback, internal
+//   slow=MS[:UNIT][@S]               answer every request to UNIT (amp, bio or
+//                                    a number; default both) MS ms late
+//                                    (1..65535), from S s on (default 0)
+//   hang-after=S[:bio|amp|all]       stop answering at S s, connections left
+//                                    open: a hung device (default bio)
 #pragma once
 
 #include <chrono>
@@ -28,14 +33,15 @@
 namespace knoblab::modbus {
 
 struct FaultAction {
-  enum class Kind { disconnect, exception, stale, amp_fault };
+  enum class Kind { disconnect, exception, stale, amp_fault, slow, hang };
   Kind kind = Kind::disconnect;
   double at_seconds = 0.0;                  // after SimServer::start()
   std::chrono::milliseconds refuse_for{1000};  // disconnect
   int exception_code = 0;                   // exception
-  bool to_amplifier = true;                 // exception, stale: which devices
+  bool to_amplifier = true;                 // exception, stale, slow, hang: which devices
   bool to_biometrics = true;
   std::uint16_t fault_bits = 0;             // amp_fault
+  std::chrono::milliseconds reply_delay{0}; // slow
 };
 
 // nullopt and a message in *error on a malformed spec.

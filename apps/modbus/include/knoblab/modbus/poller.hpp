@@ -1,13 +1,16 @@
-// The hapticd side of Modbus: a non-realtime thread that polls the servo
-// amplifier and the biometrics box, runs queued amplifier commands and
-// reconnects with backoff. The realtime loop only ever reads status(), one
-// lock-free atomic load; nothing here blocks or allocates on its behalf.
+// The hapticd side of Modbus: non-realtime threads that poll the servo
+// amplifier and the biometrics box, run queued amplifier commands and
+// reconnect with backoff. Each device is polled on its own thread, so a slow
+// or hung biometrics box cannot hold amplifier reads past the comms
+// watchdog; a supervisor thread publishes the status word. The realtime loop
+// only ever reads status(), one lock-free atomic load; nothing here blocks
+// or allocates on its behalf.
 //
 //   Poller poller(config);              // throws std::invalid_argument on bad config
 //   poller.start();
 //   … loop, each cycle:  if (poller.status() & status::kAmpTripMask) zero_torque();
 //   … UI / session code: poller.enable(); poller.set_current_limit(5.0);
-//   poller.stop();                      // joins within ~2 response timeouts
+//   poller.stop();                      // joins within ~1 response timeout
 #pragma once
 
 #include <atomic>
@@ -42,6 +45,8 @@ struct PollerConfig {
 
   Millis amplifier_period{10};   // 100 Hz
   Millis biometrics_period{10};  // must be <= 15 ms: >= 64 Hz, twice the box's 32 Hz
+  // Each watchdog must exceed its device's period + response_timeout, or one
+  // unanswered request would raise it (validate(), below).
   Millis comms_timeout{50};      // no fresh amp read for this long -> kAmpCommsLost
   Millis biometrics_timeout{100};// no biometrics read for this long -> kBiometricsLost
   int stale_periods = 3;         // counter still for more sample periods -> kBiometricsStale
@@ -53,8 +58,9 @@ struct PollerConfig {
   // above must not trip because a busy machine starved the thread reading.
   int priority = 0;
 
-  // Called on the poller thread with each 32 Hz sample exactly once, in
-  // counter order. Keep it short (queue to the store): it delays polling.
+  // Called on the biometrics thread with each 32 Hz sample exactly once, in
+  // counter order. Keep it short (queue to the store): it delays polling the
+  // box, and on a shared RTU bus the amplifier too (one thread polls both).
   // An exception it throws is caught and lands in PollerStats::last_error.
   std::function<void(const BiometricSample&)> on_sample;
 
@@ -64,6 +70,20 @@ struct PollerConfig {
     return e;
   }
 };
+
+// A PollerConfig setting that cannot work: its member path
+// ("amplifier.response_timeout", "comms_timeout"; empty for the whole) and why.
+struct PollerConfigProblem {
+  std::string setting;
+  std::string why;
+};
+
+// The first problem with c, or nullopt: the endpoints (validate(endpoint)),
+// the periods, and the timing rules: period + response_timeout below the
+// device's watchdog; devices on one RTU bus at distinct unit ids with the
+// same line settings and response timeout. Poller's constructor throws
+// std::invalid_argument("modbus poller: SETTING: WHY") for it. docs/modbus.md.
+std::optional<PollerConfigProblem> validate(const PollerConfig& c);
 
 struct PollerStats {
   std::uint64_t amp_reads = 0, amp_errors = 0, amp_exceptions = 0;
@@ -89,8 +109,9 @@ class Poller {
   Poller& operator=(const Poller&) = delete;
 
   void start();
-  // Joins both threads. Bounded: the poller thread is at most inside one
-  // request (response_timeout) when asked.
+  // Joins the threads. Bounded: each polling thread is at most inside one
+  // request (its response_timeout) when asked, and they finish it side by
+  // side; queued commands not yet sent are dropped.
   void stop();
 
   // Realtime-safe: one atomic load. Before start() and after stop() it
@@ -98,7 +119,7 @@ class Poller {
   std::uint32_t status() const noexcept { return status_.load(std::memory_order_acquire); }
   const std::atomic<std::uint32_t>& status_word() const noexcept { return status_; }
 
-  // Queue a command for the poller thread (non-realtime callers only).
+  // Queue a command for the amplifier thread (non-realtime callers only).
   // False if the queue is full, the poller is not running or the value is
   // out of range (current limit outside 0..20 A, the amp's peak).
   bool enable() { return submit({AmpCommand::Kind::enable}); }
@@ -115,7 +136,8 @@ class Poller {
   struct Link;
 
   void raise_priority();  // on each of its threads, as PollerConfig::priority asks
-  void run();
+  void run(bool amplifier, bool biometrics);  // one polling thread's loop
+  bool stopping() const;
   void supervise();
   void publish(Clock::time_point now);
   bool ensure_open(Link& link, Clock::time_point now);
@@ -134,7 +156,7 @@ class Poller {
 
   std::atomic<std::uint32_t> status_;
 
-  // Facts the poller thread learns; the supervisor turns them into status_
+  // Facts the polling threads learn; the supervisor turns them into status_
   // (it alone writes status_, so the word is always self-consistent).
   std::atomic<std::uint32_t> io_bits_{0};
   std::atomic<std::int64_t> amp_fresh_ns_{0};  // last read with the heartbeat moving
@@ -142,15 +164,14 @@ class Poller {
   std::atomic<std::int64_t> bio_advance_ns_{0};// last read with a new counter
   std::atomic<int> bio_rate_hz_{bio::kRateHz};
 
-  // Poller-thread-only state.
+  // Biometrics-thread-only state.
   SampleSequencer sequencer_;
   BoxClock box_clock_;
-  std::optional<std::uint16_t> last_heartbeat_;
   std::optional<std::uint32_t> last_counter_;
+  // Amplifier-thread-only state.
+  std::optional<std::uint16_t> last_heartbeat_;
   bool commanded_enabled_ = false;
   Clock::time_point enabled_at_{};
-  bool amp_mismatch_ = false;
-  bool bio_mismatch_ = false;
 
   mutable std::mutex mutex_;  // queue_, stop_, stats_, last_amp_
   std::condition_variable wake_;
@@ -162,7 +183,8 @@ class Poller {
   std::uint64_t sequencer_restarts_ = 0;
   std::optional<AmplifierStatus> last_amp_;
 
-  std::thread io_thread_;
+  std::thread amp_thread_;  // the amplifier and its commands (and the box, on a shared link)
+  std::thread bio_thread_;  // the biometrics box, when it has a link of its own
   std::thread supervisor_thread_;
 };
 

@@ -146,7 +146,11 @@ inline constexpr std::uint16_t kAmpFaultInject = 3; // amp::fault bits whose cau
 inline constexpr std::uint16_t kDropConnections = 4;// write N: drop every client, refuse new ones N ms
 inline constexpr std::uint16_t kMute = 5;           // MuteBit: requests get no reply (a hung device)
 inline constexpr std::uint16_t kStimulus = 6;       // write 1: present a stimulus now
-inline constexpr std::uint16_t kHoldingCount = 7;
+inline constexpr std::uint16_t kAmpReplyDelay = 7;  // ms each amp reply is held back (a slow device); 0 = off
+inline constexpr std::uint16_t kBioReplyDelay = 8;  // same for the biometrics unit
+inline constexpr std::uint16_t kAmpMapVersion = 9;  // the map version the amp reports (other firmware); 0 = kMapVersion
+inline constexpr std::uint16_t kBioMapVersion = 10; // same for the biometrics unit
+inline constexpr std::uint16_t kHoldingCount = 11;
 
 // Input registers (FC 04) after the identity block.
 inline constexpr std::uint16_t kRequestsServed = 2;  // uint32, 2 registers

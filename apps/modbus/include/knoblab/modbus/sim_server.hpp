@@ -63,6 +63,11 @@ class SimServer {
   void set_freeze(std::uint16_t bits);     // simctl::kFreeze* bits; 0: live again
   void set_amp_fault(std::uint16_t bits);  // amp::fault bits whose cause is present; 0: gone
   void set_mute(std::uint16_t bits);       // simctl::kMute* bits
+  // Hold each reply of unit back this long (0..65535 ms; 0: prompt again).
+  // Only that unit's connections wait: the others are served meanwhile.
+  void set_reply_delay(int unit, std::chrono::milliseconds delay);
+  // The map version unit reports (another firmware); 0: the real one again.
+  void set_map_version(int unit, std::uint16_t version);
   void drop_connections(std::chrono::milliseconds refuse_for);
   void stimulus();
 
@@ -72,6 +77,7 @@ class SimServer {
   struct Client;
   void run();
   void serve_client(Client& c, std::chrono::steady_clock::time_point now);
+  void answer_frames(Client& c, std::chrono::steady_clock::time_point now);
   void answer(Client& c, const std::uint8_t* frame, std::size_t length,
               std::chrono::steady_clock::time_point now);
   void accept_clients(std::chrono::steady_clock::time_point now);
