@@ -1,4 +1,6 @@
 // The blocking client: timeouts, late replies, errors, lost connections.
+#include <poll.h>
+
 #include <thread>
 
 #include "knoblab/control/client.hpp"
@@ -67,6 +69,28 @@ TEST_F(ClientTest, ServerGoingAwayIsAClientError) {
   server->stop();
   EXPECT_THROW(c.request("ping"), ClientError);
   EXPECT_FALSE(c.connected());
+}
+
+class ClientRefused : public ServerTest {
+ protected:
+  void configure(ServerConfig& c) override { c.max_clients = 1; }
+};
+
+// The server refuses (busy) and closes before the client has sent anything;
+// the client's send then fails, but the reason is already in its socket.
+TEST_F(ClientRefused, RequestOnAConnectionTheServerRefusedReturnsItsReason) {
+  Client first(config.socket_path);
+  ASSERT_TRUE(first.request("ping").ok);
+  Client second(config.socket_path);
+  ASSERT_TRUE(wait_until([&] {
+    pollfd p{second.native_handle(), POLLIN, 0};
+    return ::poll(&p, 1, 0) == 1 && (p.revents & POLLHUP);  // the server has closed its end
+  }, 5s));
+  Reply r;
+  ASSERT_NO_THROW(r = second.request("ping")) << "the server's reason was lost";
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(r.error.code, ErrorCode::busy);
+  EXPECT_NE(r.error.message.find("too many clients"), std::string::npos) << r.error.message;
 }
 
 }  // namespace

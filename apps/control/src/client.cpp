@@ -91,7 +91,14 @@ Reply Client::request(std::string_view cmd, json args, Duration timeout) {
   } catch (const std::length_error& e) {
     throw ClientError(std::string("request does not fit one frame: ") + e.what());
   }
-  send_all(frame, deadline);
+  if (const int err = send_all(frame, deadline); err != 0) {
+    // The server may have closed after saying why (busy: too many clients,
+    // a silent connection closed); that reply says more than the errno.
+    auto reason = parting_reply();
+    close();
+    if (reason) return std::move(*reason);
+    throw ClientError(std::string("connection lost while sending: ") + std::strerror(err));
+  }
   for (;;) {
     auto message = receive(deadline);
     if (!message)
@@ -138,7 +145,7 @@ void Client::keep_event(Event event) {
   events_.push_back(std::move(event));
 }
 
-void Client::send_all(const std::string& bytes, Deadline deadline) {
+int Client::send_all(const std::string& bytes, Deadline deadline) {
   std::size_t sent = 0;
   while (sent < bytes.size()) {
     const ssize_t n = ::send(fd_, bytes.data() + sent, bytes.size() - sent, MSG_NOSIGNAL | MSG_DONTWAIT);
@@ -152,9 +159,25 @@ void Client::send_all(const std::string& bytes, Deadline deadline) {
       if (::poll(&p, 1, remaining_ms(deadline)) == 0) throw ClientError("timed out sending a request");
       continue;
     }
-    const int err = errno;
-    close();
-    throw ClientError(std::string("connection lost while sending: ") + std::strerror(err));
+    return n < 0 && errno != 0 ? errno : EPIPE;
+  }
+  return 0;
+}
+
+std::optional<Reply> Client::parting_reply() {
+  try {
+    for (;;) {
+      auto message = receive(Clock::now());  // what has arrived already; no waiting
+      if (!message) return std::nullopt;
+      if (auto* event = std::get_if<Event>(&*message)) {
+        keep_event(std::move(*event));
+        continue;
+      }
+      auto& reply = std::get<ReplyMessage>(*message);
+      if (!reply.id) return std::move(reply.reply);
+    }
+  } catch (const ClientError&) {
+    return std::nullopt;  // the connection ended without a reason
   }
 }
 

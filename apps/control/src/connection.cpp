@@ -7,8 +7,17 @@
 
 namespace knoblab::control::detail {
 
-Connection::Connection(UniqueFd fd, ClientId id, std::size_t max_queued_bytes)
-    : fd_(std::move(fd)), id_(id), max_queued_bytes_(max_queued_bytes) {}
+Connection::Connection(UniqueFd fd, ClientId id, std::size_t max_queued_bytes, Clock::time_point accepted,
+                       std::optional<pid_t> peer)
+    : accepted_at(accepted), peer_pid(peer), fd_(std::move(fd)), id_(id), max_queued_bytes_(max_queued_bytes) {}
+
+std::optional<pid_t> peer_process(int fd) {
+  ucred cred{};
+  socklen_t len = sizeof cred;
+  if (::getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &cred, &len) != 0 || len != sizeof cred) return std::nullopt;
+  if (cred.pid <= 0) return std::nullopt;  // the peer lives where our pids cannot name it
+  return cred.pid;
+}
 
 Connection::ReadStatus Connection::read_some() {
   const auto area = decoder_.write_area();

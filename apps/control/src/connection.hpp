@@ -10,6 +10,8 @@
 #include <optional>
 #include <string>
 
+#include <sys/types.h>
+
 #include "knoblab/control/framing.hpp"
 #include "knoblab/control/messages.hpp"
 #include "knoblab/control/protocol.hpp"
@@ -24,7 +26,8 @@ class Connection {
   using Clock = std::chrono::steady_clock;
   enum class ReadStatus { data, would_block, eof, error };
 
-  Connection(UniqueFd fd, ClientId id, std::size_t max_queued_bytes);
+  Connection(UniqueFd fd, ClientId id, std::size_t max_queued_bytes, Clock::time_point accepted_at,
+             std::optional<pid_t> peer_pid);
 
   int fd() const { return fd_.get(); }
   ClientId id() const { return id_; }
@@ -49,6 +52,13 @@ class Connection {
   bool dead = false;
   // Since when a started frame has been waiting for its remaining bytes.
   std::optional<Clock::time_point> partial_since;
+  // For the idle rules: when the connection was accepted, and when its last
+  // valid request arrived (none yet: it has not said hello).
+  Clock::time_point accepted_at;
+  std::optional<Clock::time_point> last_request;
+  // The process that connected (SO_PEERCRED), for max_clients_per_peer;
+  // nullopt when the kernel cannot name it (e.g. another pid namespace).
+  std::optional<pid_t> peer_pid;
 
  private:
   UniqueFd fd_;
@@ -59,5 +69,8 @@ class Connection {
   std::size_t queued_bytes_ = 0;
   std::size_t front_offset_ = 0;  // bytes of queue_.front() already sent
 };
+
+// The process on the other end of a connected Unix socket, or nullopt.
+std::optional<pid_t> peer_process(int fd);
 
 }  // namespace knoblab::control::detail

@@ -64,8 +64,18 @@ void Server::publish(const Event& event) {
 
 ServerStats Server::stats() const {
   const auto& c = impl_->counters;
-  return {c.accepted.load(), c.refused.load(), c.dropped.load(), c.requests.load(),
-          c.rejections.load(), c.events_dropped.load(), c.watchdog_expiries.load()};
+  ServerStats s;
+  s.clients_accepted = c.accepted.load();
+  s.clients_refused = c.refused.load();
+  s.clients_refused_per_peer = c.refused_per_peer.load();
+  s.clients_hello_timed_out = c.hello_timeouts.load();
+  s.clients_idle_timed_out = c.idle_timeouts.load();
+  s.clients_dropped = c.dropped.load();
+  s.requests = c.requests.load();
+  s.rejections = c.rejections.load();
+  s.events_dropped = c.events_dropped.load();
+  s.watchdog_expiries = c.watchdog_expiries.load();
+  return s;
 }
 
 }  // namespace knoblab::control

@@ -12,6 +12,8 @@
 #include <optional>
 #include <string>
 #include <thread>
+
+#include <sys/types.h>
 #include <utility>
 #include <vector>
 
@@ -54,8 +56,8 @@ struct Server::Impl {
   std::deque<std::pair<std::size_t, Frame>> pending;  // published events: (event index, frame)
 
   struct Counters {
-    std::atomic<std::uint64_t> accepted{0}, refused{0}, dropped{0}, requests{0}, rejections{0},
-        events_dropped{0}, watchdog_expiries{0};
+    std::atomic<std::uint64_t> accepted{0}, refused{0}, refused_per_peer{0}, hello_timeouts{0}, idle_timeouts{0},
+        dropped{0}, requests{0}, rejections{0}, events_dropped{0}, watchdog_expiries{0};
   } counters;
 
   void log(const std::string& line) const {
@@ -77,6 +79,13 @@ struct Server::Impl {
   void take_pending_events();
   void broadcast(std::size_t index, const Frame& frame);
   void wake_loop();
+
+  // server_life.cpp
+  // Why a new connection from `peer` may not stay (a busy message), or nullopt.
+  std::optional<std::string> refusal(std::optional<pid_t> peer);
+  // When c must have sent its next valid request, or nullopt if it may stay silent.
+  std::optional<Clock::time_point> silence_deadline(const Connection& c) const;
+  void close_if_silent(Connection& c, Clock::time_point now);
 
   // server_requests.cpp
   void answer(Connection& c, std::string_view payload);

@@ -61,8 +61,12 @@ int Server::Impl::poll_timeout_ms(Clock::time_point now) const {
   if (now < accept_paused_until) next = std::min(next, accept_paused_until);
   if (const auto d = watchdog.deadline()) next = std::min(next, *d);
   for (const auto& c : clients) {
-    if (c->closing) next = std::min(next, c->close_deadline);
-    else if (c->partial_since) next = std::min(next, *c->partial_since + config.partial_frame_timeout);
+    if (c->closing) {
+      next = std::min(next, c->close_deadline);
+      continue;
+    }
+    if (c->partial_since) next = std::min(next, *c->partial_since + config.partial_frame_timeout);
+    if (const auto d = silence_deadline(*c)) next = std::min(next, *d);
   }
   if (next <= now) return 0;
   // round up so we never wake just before a deadline and spin
@@ -79,37 +83,36 @@ void Server::Impl::housekeeping(Clock::time_point now) {
       const auto waited = std::chrono::duration_cast<milliseconds>(config.partial_frame_timeout).count();
       send_final(*c, Rejection{std::nullopt, {ErrorCode::bad_frame,
                                               "frame incomplete after " + std::to_string(waited) + " ms", {}}});
+    } else {
+      close_if_silent(*c, now);
     }
   }
   remove_dead();
   if (watchdog.expired(now)) watchdog_fired(WatchdogReason::silence);
 }
 
+// One connection per round: a peer's connections that already hung up are
+// served and reaped (next round's poll reports them) before its next one is
+// counted against the limits, so a process that closes and reconnects
+// quickly is not refused for connections it no longer has.
 void Server::Impl::accept_clients() {
-  for (;;) {
-    detail::UniqueFd fd(::accept4(listener.fd.get(), nullptr, nullptr, SOCK_NONBLOCK | SOCK_CLOEXEC));
-    if (!fd) {
-      if (errno == EINTR || errno == ECONNABORTED) continue;
-      if (errno == EMFILE || errno == ENFILE || errno == ENOBUFS || errno == ENOMEM) {
-        log(std::string("accept: ") + std::strerror(errno) + "; pausing");
-        accept_paused_until = Clock::now() + kAcceptBackoff;
-      }
-      return;
+  detail::UniqueFd fd(::accept4(listener.fd.get(), nullptr, nullptr, SOCK_NONBLOCK | SOCK_CLOEXEC));
+  if (!fd) {
+    if (errno == EMFILE || errno == ENFILE || errno == ENOBUFS || errno == ENOMEM) {
+      log(std::string("accept: ") + std::strerror(errno) + "; pausing");
+      accept_paused_until = Clock::now() + kAcceptBackoff;
     }
-    if (clients.size() >= config.max_clients) {
-      // Tell the client why, best effort, without waiting for it.
-      const auto frame = encode_json_frame(reply_message(
-          std::nullopt, Reply::failure(ErrorCode::busy, "too many clients (limit " +
-                                                            std::to_string(config.max_clients) + ")")));
-      [[maybe_unused]] const auto n = ::send(fd.get(), frame.data(), frame.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
-      ++counters.refused;
-      log("refused a client: " + std::to_string(clients.size()) + " connected (limit " +
-          std::to_string(config.max_clients) + ")");
-      continue;
-    }
-    clients.push_back(std::make_unique<Connection>(std::move(fd), next_id++, config.max_queued_bytes));
-    ++counters.accepted;
+    return;  // EAGAIN, EINTR, ECONNABORTED: the next round tries again if one is waiting
   }
+  const auto peer = detail::peer_process(fd.get());
+  if (const auto why = refusal(peer)) {
+    // Tell the client why, best effort, without waiting for it.
+    const auto frame = encode_json_frame(reply_message(std::nullopt, Reply::failure(ErrorCode::busy, *why)));
+    [[maybe_unused]] const auto n = ::send(fd.get(), frame.data(), frame.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+    return;
+  }
+  clients.push_back(std::make_unique<Connection>(std::move(fd), next_id++, config.max_queued_bytes, Clock::now(), peer));
+  ++counters.accepted;
 }
 
 void Server::Impl::serve(Connection& c, short revents) {

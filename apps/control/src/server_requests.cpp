@@ -22,7 +22,9 @@ void Server::Impl::answer(Connection& c, std::string_view payload) {
   auto& request = std::get<Request>(decoded);
   request.client = c.id();
   ++counters.requests;
-  watchdog.feed(c.id(), Clock::now());
+  const auto now = Clock::now();
+  c.last_request = now;  // only valid requests keep a connection alive: noise does not
+  watchdog.feed(c.id(), now);
   send(c, request.id, dispatch(c, request));
 }
 

@@ -62,7 +62,9 @@ class Client {
   // hello; returns its result. Throws RemoteError (e.g. busy, unsupported_version).
   nlohmann::json hello(const HelloOptions& options = {});
 
-  // Sends one request and waits for its reply (ok or error).
+  // Sends one request and waits for its reply (ok or error). If the server
+  // had already closed the connection, the reply is the error it gave as its
+  // reason (e.g. busy), when it gave one; else ClientError.
   Reply request(std::string_view cmd, nlohmann::json args = nlohmann::json::object());
   Reply request(std::string_view cmd, nlohmann::json args, Duration timeout);
   // request(), returning the result or throwing RemoteError.
@@ -82,7 +84,12 @@ class Client {
 
  private:
   using Deadline = std::chrono::steady_clock::time_point;
-  void send_all(const std::string& bytes, Deadline deadline);
+  // 0 once every byte is sent, else the errno of a lost connection. Throws
+  // ClientError at the deadline.
+  int send_all(const std::string& bytes, Deadline deadline);
+  // A reply without an id the server sent before closing (why it closed),
+  // if one has arrived.
+  std::optional<Reply> parting_reply();
   // The next message from the server, or nullopt at the deadline.
   std::optional<ServerMessage> receive(Deadline deadline);
   void keep_event(Event event);

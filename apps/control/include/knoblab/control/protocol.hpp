@@ -27,8 +27,9 @@ enum class ErrorCode : std::uint8_t {
   unsupported_version,  // "v" missing or not a version the server speaks
   unknown_command,      // "cmd" names no command
   bad_args,             // envelope or argument fails the schema (message names the key)
-  busy,                 // refused for now: another client supervises, too many clients,
-                        // or the daemon cannot do it in its current state
+  busy,                 // refused for now: another client supervises, too many clients
+                        // (or from one process), a silent connection closed to free its
+                        // slot, or the daemon cannot do it in its current state
   internal,             // the daemon failed while handling a valid request
 };
 inline constexpr std::size_t kErrorCodeCount = 9;

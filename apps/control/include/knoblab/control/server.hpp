@@ -1,6 +1,7 @@
 // The control socket of hapticd: a Unix stream socket serving protocol v1 to
 // many clients from one non-realtime thread (poll). Slow or hostile clients
-// cost bounded memory and never block the others.
+// cost bounded memory and never block the others; silent ones, and one
+// process's connections beyond its share, do not keep the others out.
 #pragma once
 
 #include <atomic>
@@ -24,6 +25,21 @@ struct ServerConfig {
   // a startup error.
   std::string socket_group;
   std::size_t max_clients = 16;
+  // Connections one process (SO_PEERCRED pid) may hold at once; one more is
+  // refused with busy. Without it a single client (a runaway script, a tool
+  // that leaks connections) could take every slot and lock the UI out.
+  // Zero: no limit.
+  std::size_t max_clients_per_peer = 4;
+  // A new connection must send a valid request (hello, or any other) within
+  // this long, or it gets busy and is closed: a peer that connects and says
+  // nothing would otherwise hold a slot forever (the partial-frame timeout
+  // starts only at a frame's first byte). Zero: no limit.
+  std::chrono::milliseconds hello_timeout{5000};
+  // A connection that sends no valid request for this long is closed with
+  // busy, unless it is subscribed to at least one event or supervises: those
+  // are silent by design, and bounded by max_queued_bytes and the watchdog.
+  // A forgotten terminal session frees its slot. Zero: no limit.
+  std::chrono::milliseconds idle_timeout{60000};
   // Replies and events waiting for a client that does not read; beyond this
   // the client is dropped.
   std::size_t max_queued_bytes = 1024 * 1024;
@@ -40,6 +56,9 @@ struct ServerConfig {
 struct ServerStats {
   std::uint64_t clients_accepted = 0;
   std::uint64_t clients_refused = 0;   // over max_clients
+  std::uint64_t clients_refused_per_peer = 0;  // over max_clients_per_peer
+  std::uint64_t clients_hello_timed_out = 0;   // no valid request within hello_timeout
+  std::uint64_t clients_idle_timed_out = 0;    // silent for idle_timeout, neither subscribed nor supervising
   std::uint64_t clients_dropped = 0;   // outgoing queue overflow
   std::uint64_t requests = 0;          // valid requests answered
   std::uint64_t rejections = 0;        // error replies for invalid input

@@ -1,0 +1,353 @@
+// knoblab ctl end to end: the real hapticd (sim backend, a socket in a
+// scratch directory) and the real knoblab process. Deadlines are generous and
+// only bound a wait for an outcome; nothing asserts how long anything took.
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/mman.h>
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <functional>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "knoblab/control/client.hpp"
+#include "knoblab/control/schema.hpp"
+#include "process.hpp"
+
+extern char** environ;
+
+namespace knoblab::test {
+namespace {
+
+using nlohmann::json;
+using namespace std::chrono_literals;
+using Clock = std::chrono::steady_clock;
+
+constexpr auto kPatience = 20s;
+
+bool eventually(const std::function<bool()>& done, std::chrono::milliseconds within = kPatience) {
+  const auto deadline = Clock::now() + within;
+  while (!done()) {
+    if (Clock::now() > deadline) return false;
+    std::this_thread::sleep_for(20ms);
+  }
+  return true;
+}
+
+pid_t spawn(const std::vector<std::string>& args, const std::string& out, const std::string& err) {
+  std::vector<std::string> argv_s = args;
+  std::vector<char*> argv;
+  for (auto& a : argv_s) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&fa, STDERR_FILENO, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = -1;
+  if (posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ) != 0) pid = -1;
+  posix_spawn_file_actions_destroy(&fa);
+  return pid;
+}
+
+// The exit code once the process ends within `within` (-1: killed by a
+// signal), or nullopt after killing it for taking too long.
+std::optional<int> wait_exit(pid_t pid, std::chrono::milliseconds within = kPatience) {
+  int status = 0;
+  if (!eventually([&] { return ::waitpid(pid, &status, WNOHANG) == pid; }, within)) {
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, nullptr, 0);
+    return std::nullopt;
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// hapticd on the simulated camera at a gentle rate, serving a socket in a
+// scratch directory (and a telemetry ring when asked).
+class Hapticd {
+ public:
+  explicit Hapticd(std::string telemetry_shm = {}) : telemetry_(std::move(telemetry_shm)) {
+    std::vector<std::string> args = {KNOBLAB_HAPTICD_PATH, "--backend", "sim",    "--knob",
+                                     "moderate-detents",   "--rate",    "1000",   "--socket",
+                                     socket(),             "--db",      (dir_ / "lab.sqlite").string()};
+    if (!telemetry_.empty()) args.insert(args.end(), {"--telemetry", telemetry_});
+    pid_ = spawn(args, (dir_ / "hapticd.out").string(), (dir_ / "hapticd.err").string());
+  }
+  ~Hapticd() {
+    if (pid_ > 0) {
+      ::kill(pid_, SIGTERM);
+      wait_exit(pid_, 10s);
+    }
+    if (!telemetry_.empty()) ::shm_unlink(telemetry_.c_str());
+  }
+  Hapticd(const Hapticd&) = delete;
+  Hapticd& operator=(const Hapticd&) = delete;
+
+  // Up and answering get_state.
+  bool ready() const {
+    return pid_ > 0 && eventually([&] {
+             try {
+               control::Client c(socket());
+               return c.call("get_state").contains("mode");
+             } catch (const std::exception&) {
+               return false;
+             }
+           });
+  }
+  std::string socket() const { return (dir_ / "h.sock").string(); }
+  std::string log() const { return read_file(dir_ / "hapticd.out") + read_file(dir_ / "hapticd.err"); }
+
+ private:
+  ScratchDir dir_;
+  std::string telemetry_;
+  pid_t pid_ = -1;
+};
+
+RunResult ctl(const std::string& socket, std::vector<std::string> args) {
+  args.insert(args.begin(), {"ctl", "--socket", socket});
+  return run_knoblab(args);
+}
+
+json parse_stdout(const RunResult& r) {
+  const json j = json::parse(r.out, nullptr, false);
+  EXPECT_FALSE(j.is_discarded()) << "stdout is not JSON:\n" << r.out << "\nstderr:\n" << r.err;
+  return j;
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty()) out.push_back(line);
+  return out;
+}
+
+// `knoblab ctl --watch …` in the background, its output in files.
+class Watcher {
+ public:
+  Watcher(const std::string& socket, std::vector<std::string> extra) {
+    std::vector<std::string> args = {KNOBLAB_CLI_PATH, "ctl", "--socket", socket, "--watch"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    pid_ = spawn(args, out_path(), err_path());
+  }
+  ~Watcher() {
+    if (pid_ > 0) wait_exit(pid_, 0ms);  // kills it if still running
+  }
+  // It has subscribed: it says so on stderr before it prints anything.
+  bool subscribed() const {
+    return pid_ > 0 && eventually([&] { return err().find("watching") != std::string::npos; });
+  }
+  std::optional<int> finish() {
+    const auto code = wait_exit(pid_);
+    pid_ = -1;
+    return code;
+  }
+  void signal(int sig) const { ::kill(pid_, sig); }
+  std::string out() const { return read_file(out_path()); }
+  std::string err() const { return read_file(err_path()); }
+
+ private:
+  std::string out_path() const { return (dir_ / "out").string(); }
+  std::string err_path() const { return (dir_ / "err").string(); }
+  ScratchDir dir_;
+  pid_t pid_ = -1;
+};
+
+// ---- without hapticd --------------------------------------------------------
+
+TEST(Ctl, HelpListsEveryCommandOfTheProtocolSchema) {
+  const RunResult r = run_knoblab({"ctl", "--help"});
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("usage: knoblab ctl"), std::string::npos) << r.out;
+  for (const auto& c : control::command_table())
+    EXPECT_NE(r.out.find("\n  " + std::string(control::to_string(c.command)) + " "), std::string::npos)
+        << control::to_string(c.command) << " missing from:\n" << r.out;
+  EXPECT_NE(r.out.find("swept_sine.a=NUM"), std::string::npos) << "nested keys are shown dotted:\n" << r.out;
+  EXPECT_NE(r.out.find("mode=idle|render|capture|calibrate"), std::string::npos) << r.out;
+}
+
+TEST(Ctl, MissingSocketGivesAClearErrorAndExitThree) {
+  ScratchDir dir;
+  const std::string path = (dir / "nobody.sock").string();
+  const RunResult r = ctl(path, {"get_state"});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_NE(r.err.find("no control socket at " + path), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("is hapticd running?"), std::string::npos) << r.err;
+}
+
+TEST(Ctl, SocketFileWithNobodyListeningGivesExitThree) {
+  ScratchDir dir;
+  const std::string path = (dir / "stale.sock").string();
+  const int fd = ::socket(AF_UNIX, SOCK_STREAM, 0);
+  sockaddr_un addr{};
+  addr.sun_family = AF_UNIX;
+  std::strncpy(addr.sun_path, path.c_str(), sizeof addr.sun_path - 1);
+  ASSERT_EQ(::bind(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr), 0);
+  ::close(fd);  // the file stays, nobody listens: a daemon that died
+  const RunResult r = ctl(path, {"get_state"});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_NE(r.err.find("cannot reach hapticd"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(path), std::string::npos) << r.err;
+}
+
+TEST(Ctl, UsageErrorsExitTwoBeforeAnyConnection) {
+  ScratchDir dir;
+  const std::string nowhere = (dir / "nobody.sock").string();  // exit 3 would mean it tried to connect
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{}, "name a COMMAND"},
+      {{"set_mode", "mode"}, "expected key=value, got 'mode'"},
+      {{"get_state", "a=1", "a=2"}, "'a' is given twice"},
+      {{"start_capture", "pid=1", "pid.Kp=2"}, "not an object"},
+      {{"start_capture", "pid..Kp=2"}, "a key part is empty"},
+      {{"--json", "{oops"}, "not valid JSON"},
+      {{"--json", R"({"command": "get_state", "extra": 1})"}, "unknown key 'extra'"},
+      {{"--json", R"({"command": "get_state"})", "x=1"}, "--json carries the whole request"},
+      {{"--count", "2", "get_state"}, "go with --watch"},
+      {{"--watch", "--count", "0"}, "--count wants a positive integer"},
+      {{"--watch", "--events", ","}, "--events wants"},
+  };
+  for (const auto& [args, message] : cases) {
+    const RunResult r = ctl(nowhere, args);
+    EXPECT_EQ(r.exit_code, 2) << message << "\n" << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+  }
+}
+
+// ---- against hapticd ----------------------------------------------------------
+
+TEST(Ctl, GetStatePrintsTheDaemonsStateAsJson) {
+  Hapticd d;
+  ASSERT_TRUE(d.ready()) << d.log();
+  const RunResult r = ctl(d.socket(), {"get_state"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const json state = parse_stdout(r);
+  EXPECT_EQ(state.value("mode", ""), "idle") << r.out;
+  EXPECT_TRUE(state.contains("faults")) << r.out;
+}
+
+TEST(Ctl, KnoblabSocketEnvironmentVariableNamesTheSocket) {
+  Hapticd d;
+  ASSERT_TRUE(d.ready()) << d.log();
+  ::setenv("KNOBLAB_SOCKET", d.socket().c_str(), 1);
+  const RunResult r = run_knoblab({"ctl", "get_state"});
+  ::unsetenv("KNOBLAB_SOCKET");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(parse_stdout(r).value("mode", ""), "idle");
+}
+
+TEST(Ctl, KeyValueArgumentsReachTheDaemon) {
+  Hapticd d;
+  ASSERT_TRUE(d.ready()) << d.log();
+  RunResult r = ctl(d.socket(), {"load_model", "M_acc=1.3e-5", "B_vel=2e-4", "A_pos=0.01", "P_pos=0.05"});
+  EXPECT_EQ(r.exit_code, 0) << "numbers must travel as numbers: " << r.err;
+  r = ctl(d.socket(), {"set_mode", "mode=render"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  r = ctl(d.socket(), {"get_state"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(parse_stdout(r).value("mode", ""), "render") << r.out;
+}
+
+TEST(Ctl, DottedKeysBuildNestedObjects) {
+  Hapticd d;
+  ASSERT_TRUE(d.ready()) << d.log();
+  // An out-of-range nested value: hapticd names the nested key and its range,
+  // which it can only do if swept_sine arrived as an object (a flat
+  // "swept_sine.c" key would be refused as unknown).
+  const RunResult r = ctl(d.socket(), {"start_capture", "swept_sine.a=0", "swept_sine.b=1.5", "swept_sine.c=99",
+                                       "swept_sine.d=3", "seconds=0.2", "knob=ctl-test"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("bad_args"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("'swept_sine.c' must be in"), std::string::npos) << r.err;
+}
+
+TEST(Ctl, JsonOptionSendsTheRequestAsGiven) {
+  Hapticd d;
+  ASSERT_TRUE(d.ready()) << d.log();
+  RunResult r = ctl(d.socket(), {"--json", R"({"command": "set_mode", "args": {"mode": "render"}})"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  r = ctl(d.socket(), {"get_state"});
+  EXPECT_EQ(parse_stdout(r).value("mode", ""), "render") << r.out;
+}
+
+TEST(Ctl, ErrorReplyExitsOneWithTheDaemonsError) {
+  Hapticd d;
+  ASSERT_TRUE(d.ready()) << d.log();
+  RunResult r = ctl(d.socket(), {"frobnicate"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_NE(r.err.find("frobnicate: unknown_command"), std::string::npos) << r.err;
+  r = ctl(d.socket(), {"set_mode", "mode=sideways"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("bad_args"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("'mode'"), std::string::npos) << r.err;
+}
+
+TEST(Ctl, WatchPrintsEventsAsJsonLinesAfterAStateChange) {
+  Hapticd d;
+  ASSERT_TRUE(d.ready()) << d.log();
+  Watcher w(d.socket(), {"--events", "state", "--count", "2"});
+  ASSERT_TRUE(w.subscribed()) << w.err();
+  ASSERT_EQ(ctl(d.socket(), {"set_mode", "mode=render"}).exit_code, 0);
+  // The daemon reports changes, not every mode it passed through: wait for
+  // the first before making the second.
+  ASSERT_TRUE(eventually([&] { return !w.out().empty(); })) << w.err() << d.log();
+  ASSERT_EQ(ctl(d.socket(), {"set_mode", "mode=idle"}).exit_code, 0);
+  EXPECT_EQ(w.finish(), 0) << w.err();
+  const auto lines = lines_of(w.out());
+  ASSERT_EQ(lines.size(), 2u) << w.out();
+  for (const auto& line : lines) {
+    const json j = json::parse(line, nullptr, false);
+    ASSERT_TRUE(j.is_object()) << line;
+    EXPECT_EQ(j.value("event", ""), "state") << line;
+    EXPECT_TRUE(j["data"].contains("mode")) << line;
+  }
+  EXPECT_EQ(json::parse(lines[0])["data"]["mode"], "render") << lines[0];
+}
+
+TEST(Ctl, WatchEndsCleanlyOnSigintAndSigterm) {
+  Hapticd d;
+  ASSERT_TRUE(d.ready()) << d.log();
+  for (const int sig : {SIGINT, SIGTERM}) {
+    Watcher w(d.socket(), {});
+    ASSERT_TRUE(w.subscribed()) << w.err();
+    w.signal(sig);
+    EXPECT_EQ(w.finish(), 0) << strsignal(sig) << ": " << w.err();
+  }
+}
+
+TEST(Ctl, WatchWithTelemetryPrintsTheRingsRecords) {
+  const std::string shm = "/knoblab-ctl-test-" + std::to_string(::getpid());
+  Hapticd d(shm);
+  ASSERT_TRUE(d.ready()) << d.log();
+  Watcher w(d.socket(), {"--events", "fault_latched", "--telemetry", "--count", "5"});
+  EXPECT_EQ(w.finish(), 0) << w.err() << d.log();
+  const auto lines = lines_of(w.out());
+  ASSERT_EQ(lines.size(), 5u) << w.out();
+  for (const auto& line : lines) {
+    const json j = json::parse(line, nullptr, false);
+    ASSERT_TRUE(j.is_object()) << line;
+    if (j.contains("event") || j.contains("telemetry_lost")) continue;  // a fault or a lap: allowed
+    ASSERT_TRUE(j.contains("telemetry")) << line;
+    for (const char* key : {"seq", "t", "theta", "omega", "torque", "mode", "fault_bits"})
+      EXPECT_TRUE(j["telemetry"].contains(key)) << key << " missing: " << line;
+  }
+  EXPECT_NE(w.err().find(shm), std::string::npos) << "names the ring it reads: " << w.err();
+}
+
+}  // namespace
+}  // namespace knoblab::test
