@@ -15,6 +15,7 @@
 #include "knoblab/capture/sim_daq.hpp"
 #include "knoblab/hal/factory.hpp"
 #include "knoblab/hal/memory_lines.hpp"
+#include "knoblab/hal/modbus_config.hpp"
 #include "knoblab/control/schema.hpp"
 #include "knoblab/hapticd/control_handler.hpp"
 #include "knoblab/hapticd/daemon.hpp"
@@ -34,10 +35,13 @@ void on_signal(int) {
 
 const char* kUsage =
     "usage: hapticd [OPTIONS]\n"
-    "  --config FILE        JSON: {\"daq\": {...}, \"lines\": {...}, \"modbus\": {...}, ...} (docs/hal.md)\n"
+    "  --config FILE        JSON: {\"daq\": {...}, \"lines\": {...}, \"modbus\": {...}} (docs/hal.md);\n"
+    "                       any other top-level key is an error\n"
     "  --backend sim|comedi DAQ backend (default sim); --daq-config FILE for comedi\n"
     "  --knob PRESET        sim: the simulated knob (default moderate-detents)\n"
     "  --lines memory|gpiod digital lines (default memory); --lines-config FILE for gpiod\n"
+    "  --allow-memory-lines let a real DAQ (comedi) run with in-memory lines: no e-stop\n"
+    "                       input, no amplifier-enable line (bench tests only)\n"
     "  --rate HZ            loop rate, 1..20000 (default 10000)\n"
     "  --priority N --cpu N SCHED_FIFO priority (default 80), CPU to pin to\n"
     "  --socket PATH        control socket (docs/protocol.md); --group NAME owns it\n"
@@ -48,18 +52,53 @@ const char* kUsage =
     "  --model FILE         render model to load at start (knoblab fit --render-model)\n"
     "  --free-run           run cycles back to back (benchmark); renders a model with\n"
     "                       detents, damping and virtual-mass inertia\n"
-    "  --stats-json FILE    write the loop's timing figures as JSON at exit\n";
+    "  --stats-json FILE    write the loop's timing figures as JSON at exit\n"
+    "exit status: 0 stopped cleanly, 1 a runtime failure, 2 bad options or configuration\n";
+
+// Bad options or configuration: exit status 2, as for the HAL's ConfigError.
+struct UsageError : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
+};
 
 struct Options {
   json daq = {{"backend", "sim"}, {"knob", "moderate-detents"}};
   json lines = {{"backend", "memory"}, {"estop", "released"}};
+  bool allow_memory_lines = false;
   knoblab::hapticd::DaemonConfig cfg;
   std::string stats_json;
 };
 
 std::string need(const std::vector<std::string>& a, std::size_t& i) {
-  if (i + 1 >= a.size()) throw std::invalid_argument(a[i] + " needs a value");
+  if (i + 1 >= a.size()) throw UsageError(a[i] + " needs a value");
   return a[++i];
+}
+
+// The --config file: each section goes to the part that owns it; a key no
+// part owns is a mistake (a typo such as "modbs" would otherwise leave the
+// amplifier unsupervised without a word).
+void read_config_file(const std::string& path, Options& o) {
+  const json c = knoblab::hal::load_config_file(path);
+  if (!c.is_object()) throw knoblab::hal::ConfigError(path + ": expected a JSON object");
+  for (const auto& [key, value] : c.items()) {
+    if (key == "daq") o.daq = value;
+    else if (key == "lines") o.lines = value;
+    else if (key == "modbus") o.cfg.modbus = knoblab::hal::parse_modbus_config(value, "modbus");
+    else
+      throw knoblab::hal::ConfigError(path + ": unknown top-level key \"" + key +
+                                      "\" (known: daq, lines, modbus)");
+  }
+}
+
+// A real DAQ drives a real motor: without real lines there is no e-stop
+// input and the amplifier-enable output goes nowhere.
+void check_lines_for_a_real_daq(const Options& o) {
+  if (o.daq.value("backend", "") == "sim" || o.allow_memory_lines) return;
+  if (o.lines.value("backend", "") != "memory") return;
+  throw UsageError("the " + o.daq.value("backend", std::string("?")) +
+                   " DAQ drives a real motor, but the digital lines are in memory: no e-stop input "
+                   "would be read and the amplifier-enable line would go nowhere. Configure "
+                   "\"lines\": {\"backend\": \"gpiod\", ...} (docs/hal.md), or pass "
+                   "--allow-memory-lines for a bench test without them");
 }
 
 // A render model file (`knoblab fit --render-model`): {"model": "render4",
@@ -67,18 +106,18 @@ std::string need(const std::vector<std::string>& a, std::size_t& i) {
 // same protocol schema a client's load_model is.
 knoblab::hapticd::RenderParams read_model_file(const std::string& path) {
   std::ifstream f(path);
-  if (!f) throw std::invalid_argument("--model: cannot read " + path);
+  if (!f) throw UsageError("--model: cannot read " + path);
   json j;
   try {
     j = json::parse(f);
   } catch (const json::parse_error& e) {
-    throw std::invalid_argument("--model " + path + ": not JSON: " + e.what());
+    throw UsageError("--model " + path + ": not JSON: " + e.what());
   }
   if (!j.is_object() || j.value("model", "") != "render4" || !j.contains("params"))
-    throw std::invalid_argument("--model " + path + ": expected {\"model\": \"render4\", \"params\": {...}}");
+    throw UsageError("--model " + path + ": expected {\"model\": \"render4\", \"params\": {...}}");
   const auto& spec = knoblab::control::command_spec(knoblab::control::Command::load_model);
   if (auto problem = knoblab::control::validate_args(j["params"], spec.args))
-    throw std::invalid_argument("--model " + path + ": params." + problem->key + " " + problem->problem);
+    throw UsageError("--model " + path + ": params." + problem->key + " " + problem->problem);
   return knoblab::hapticd::render_params_from_args(j["params"], {}, false);
 }
 
@@ -91,9 +130,9 @@ Options parse(const std::vector<std::string>& a) {
       std::cout << kUsage;
       std::exit(0);
     } else if (k == "--config") {
-      const json c = knoblab::hal::load_config_file(need(a, i));
-      if (c.contains("daq")) o.daq = c.at("daq");
-      if (c.contains("lines")) o.lines = c.at("lines");
+      read_config_file(need(a, i), o);
+    } else if (k == "--allow-memory-lines") {
+      o.allow_memory_lines = true;
     } else if (k == "--backend") {
       o.daq["backend"] = need(a, i);
     } else if (k == "--daq-config") {
@@ -121,7 +160,7 @@ Options parse(const std::vector<std::string>& a) {
     } else if (k == "--modbus") {
       const std::string hp = need(a, i);
       const auto colon = hp.rfind(':');
-      if (colon == std::string::npos) throw std::invalid_argument("--modbus wants HOST:PORT");
+      if (colon == std::string::npos) throw UsageError("--modbus wants HOST:PORT");
       knoblab::modbus::PollerConfig pc;
       for (auto* e : {&pc.amplifier, &pc.biometrics}) {
         e->host = hp.substr(0, colon);
@@ -137,11 +176,15 @@ Options parse(const std::vector<std::string>& a) {
     } else if (k == "--stats-json") {
       o.stats_json = need(a, i);
     } else {
-      throw std::invalid_argument("unknown option " + k + " (see --help)");
+      throw UsageError("unknown option " + k + " (see --help)");
     }
   }
   if (o.daq.value("backend", "") == "sim") o.daq["rate_hz"] = o.cfg.core.rate_hz;
   o.cfg.knob = o.daq.value("knob", "");
+  check_lines_for_a_real_daq(o);
+  if (o.cfg.initial_model)
+    if (const auto p = knoblab::hapticd::render_params_problem(*o.cfg.initial_model, o.cfg.core.limits))
+      throw UsageError("--model: " + p->message);
   return o;
 }
 
@@ -182,8 +225,20 @@ json stats_json(const knoblab::rt::LoopResult& r, const knoblab::hapticd::Daemon
 }  // namespace
 
 int main(int argc, char** argv) {
+  Options o;
   try {
-    Options o = parse(std::vector<std::string>(argv + 1, argv + argc));
+    o = parse(std::vector<std::string>(argv + 1, argv + argc));
+  } catch (const knoblab::hal::ConfigError& e) {
+    std::cerr << "hapticd: " << e.what() << "\n";
+    return 2;
+  } catch (const UsageError& e) {
+    std::cerr << "hapticd: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {  // e.g. std::stoi on "--rate fast"
+    std::cerr << "hapticd: bad option: " << e.what() << "\n";
+    return 2;
+  }
+  try {
     auto daq = knoblab::hal::make_daq(o.daq, "daq");
     if (auto* sim = dynamic_cast<knoblab::capture::SimDaq*>(daq.get())) o.cfg.core.calibration = sim->calibration();
     auto lines = knoblab::hal::make_lines(o.lines, "lines");
