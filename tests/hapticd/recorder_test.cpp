@@ -252,5 +252,29 @@ TEST(Recorder, AStoreErrorOtherThanBusyCutsTheRecordingAndAsksForTheSafeState) {
   EXPECT_EQ(r.capture_info(fin[1].capture_id)->sample_count, 200);
 }
 
+// hapticd exiting while another writer still holds the store: what is
+// buffered is given up (the daemon waits first), and the recording says why.
+TEST(Recorder, GivingUpAtShutdownReportsTheRecordingIncompleteAndEmptiesTheBuffer) {
+  TempDb db;
+  store::Store s = store::Store::open(db.path());
+  Recorder rec(&s, defaults());
+  auto other = store::sqlite::Connection::open(db.path());
+  other.exec("BEGIN IMMEDIATE");
+  feed(rec, 0, 3000, 1);
+  rec.close();
+  rec.pump();
+  EXPECT_FALSE(rec.idle());
+  rec.abandon_all("store busy at shutdown");
+  EXPECT_TRUE(rec.idle());
+  EXPECT_EQ(rec.stats().buffered, 0u);
+  const auto fin = rec.take_finished();
+  ASSERT_EQ(fin.size(), 1u);
+  EXPECT_FALSE(fin[0].complete);
+  EXPECT_EQ(fin[0].end_reason, "store busy at shutdown");
+  EXPECT_EQ(fin[0].capture_id, 0);  // its row was never written
+  other.exec("COMMIT");
+  EXPECT_TRUE(reader(db).list_captures().empty());
+}
+
 }  // namespace
 }  // namespace knoblab::hapticd

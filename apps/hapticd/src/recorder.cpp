@@ -246,6 +246,8 @@ void Recorder::close() {
 }
 
 void Recorder::abandon_all(const std::string& reason) {
+  if (current_ != 0) end_back();  // normally close() came first
+  current_ = 0;
   while (!recordings_.empty()) {
     Recording& rec = recordings_.front();
     if (rec.cut.empty()) rec.cut = reason;
