@@ -13,7 +13,10 @@ namespace knoblab::cli {
 const CommandSpec kImportSpec{
     "import", "FILE.csv --db FILE [--knob NAME] [--mode lab|tripod]",
     "Import an interchange CSV into the store as one complete capture.\n"
-    "The file is validated first; a bad file changes nothing in the store.",
+    "The file is validated first; a bad file changes nothing in the store.\n"
+    "Samples go in in short transactions, so hapticd goes on recording into the\n"
+    "same store meanwhile; until the import ends the capture is listed as\n"
+    "'recording' (an import that is killed is marked incomplete on the next open).",
     {{"db", true, "sqlite store (created if missing)"},
      {"knob", true, "knob name to file the capture under"},
      {"mode", true, "lab (default) or tripod"}},
@@ -21,12 +24,19 @@ const CommandSpec kImportSpec{
 
 const CommandSpec kExportSpec{
     "export", "CAPTURE --db FILE --out FILE.csv",
-    "Write a stored capture as interchange CSV.",
+    "Write a stored capture as interchange CSV.\n"
+    "The capture's fields (status, end_reason, ...) become '# key: value' lines;\n"
+    "the loop's per-sample flags, when any is set, a 'flags' column.\n"
+    "Only reads the store: never waits for a writer.",
     {{"db", true, "sqlite store"}, {"out", true, "CSV file to write"}},
     1, 1};
 
 const CommandSpec kListSpec{
-    "list", "--db FILE", "List the captures in a store.", {{"db", true, "sqlite store"}}, 0, 0};
+    "list", "--db FILE",
+    "List the captures in a store.\n"
+    "An incomplete capture's last column says why (e.g. 'fault: estop').\n"
+    "Only reads the store: never waits for a writer.",
+    {{"db", true, "sqlite store"}}, 0, 0};
 
 namespace {
 
@@ -50,6 +60,14 @@ store::NewCapture describe_import(const interchange::Capture& capture, const Arg
   if (auto mode = args.get("mode")) info.mode = *mode;
   if (info.mode != "lab" && info.mode != "tripod") throw UsageError("--mode must be 'lab' or 'tripod'");
   return info;
+}
+
+// list and export only read: they must answer while hapticd or an import
+// holds the write lock.
+store::OpenOptions read_only() {
+  store::OpenOptions o;
+  o.read_only = true;
+  return o;
 }
 
 std::int64_t capture_id_arg(const std::string& text) {
@@ -79,7 +97,7 @@ int run_import(const Args& args) {
 int run_export(const Args& args) {
   const std::int64_t id = capture_id_arg(args.positionals().at(0));
   const std::string out = args.require("out");
-  store::Store db = store::Store::open(args.require("db"));
+  store::Store db = store::Store::open(args.require("db"), read_only());
   if (!db.capture_info(id)) throw std::runtime_error("no capture " + std::to_string(id) + " in the store");
   const interchange::Capture capture = db.load_samples(id);
   interchange::write_csv(capture, std::filesystem::path(out));
@@ -89,13 +107,14 @@ int run_export(const Args& args) {
 }
 
 int run_list(const Args& args) {
-  store::Store db = store::Store::open(args.require("db"));
-  std::printf("%6s  %-20s %-7s %-10s %9s %9s  %s\n", "id", "knob", "mode", "status", "samples",
-              "rate Hz", "started");
+  store::Store db = store::Store::open(args.require("db"), read_only());
+  std::printf("%6s  %-20s %-7s %-10s %9s %9s  %-24s  %s\n", "id", "knob", "mode", "status",
+              "samples", "rate Hz", "started", "why incomplete");
   for (const auto& c : db.list_captures())
-    std::printf("%6lld  %-20s %-7s %-10s %9lld %9.0f  %s\n", static_cast<long long>(c.id),
+    std::printf("%6lld  %-20s %-7s %-10s %9lld %9.0f  %-24s  %s\n", static_cast<long long>(c.id),
                 c.knob.empty() ? "-" : c.knob.c_str(), c.mode.c_str(), c.status.c_str(),
-                static_cast<long long>(c.sample_count), c.rate_hz, c.started_at.c_str());
+                static_cast<long long>(c.sample_count), c.rate_hz, c.started_at.c_str(),
+                c.end_reason ? c.end_reason->c_str() : (c.status == "incomplete" ? "?" : "-"));
   return 0;
 }
 

@@ -68,7 +68,8 @@ TEST(StoreImport, ImportLoadExportRoundTrip) {
   EXPECT_EQ(row->status, "complete");
   EXPECT_EQ(row->source, "import");
   EXPECT_EQ(row->sample_count, 3000);
-  EXPECT_FALSE(row->writer_pid.has_value());
+  EXPECT_EQ(row->writer_pid, ::getpid());  // it was written like any recording
+  EXPECT_FALSE(row->end_reason.has_value());
   EXPECT_NEAR(row->rate_hz, 10000.0, 1e-6);  // estimated from t
   EXPECT_EQ(row->metadata,
             R"({"knob":"volume","operator":"kh \"the\" tester","":"free comment"})");

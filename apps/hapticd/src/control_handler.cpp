@@ -243,7 +243,10 @@ void ControlHandler::publish_events(control::Server& server, const std::vector<F
   last_mode_ = static_cast<int>(s.mode);
   for (const FinishedRecording& f : finished)
     server.publish({"capture_finished",
-                    {{"capture_id", f.capture_id}, {"samples", f.samples}, {"complete", f.complete}}});
+                    {{"capture_id", f.capture_id},
+                     {"samples", f.samples},
+                     {"complete", f.complete},
+                     {"end_reason", f.end_reason}}});
   if (const auto cal = daemon_.take_finished_calibration())
     server.publish({"calibration_finished", calibration_json(*cal)});
 }

@@ -227,24 +227,24 @@ std::uint32_t Daemon::modbus_status() const { return poller_ ? poller_->status()
 
 std::uint64_t Daemon::ring_dropped() const { return impl_->ring->dropped(); }
 
-// The writer thread: ring → store (committed batches) and telemetry.
+// The writer thread: ring → recorder → store, and telemetry. The recorder
+// only buffers what it takes and waits for the store a few milliseconds per
+// attempt, so this thread keeps draining the ring however long another
+// writer (an import, another process) holds the database.
 void Daemon::writer_main() {
+  if (cfg_.record_buffer_samples > 0) recorder_->set_max_buffered(cfg_.record_buffer_samples);
   LoopRecord batch[512];
-  std::uint64_t seen_dropped = 0;
+  // After the loop stopped: how long the store may go without taking any of
+  // what is still buffered before hapticd gives it up and exits.
+  constexpr auto kShutdownPatience = std::chrono::seconds(30);
+  std::optional<std::chrono::steady_clock::time_point> give_up_at;
+  std::uint64_t last_buffered = 0;
   for (;;) {
     const bool done = loop_done_.load(std::memory_order_acquire);
     const std::size_t n = impl_->ring->pop_bulk(batch);
-    const std::uint64_t dropped = impl_->ring->dropped();
     for (std::size_t i = 0; i < n; ++i) {
       const LoopRecord& r = batch[i];
-      try {
-        recorder_->take(r, i == 0 ? dropped - seen_dropped : 0);
-      } catch (const std::exception& e) {
-        // The store failed (disk full, removed file…): say so and keep the
-        // loop's ring moving; the capture stays 'incomplete' in the store.
-        std::fprintf(stderr, "hapticd: recording failed: %s\n", e.what());
-        recorder_->drop_open();
-      }
+      recorder_->take(r);
       if (impl_->telemetry) {
         control::TelemetrySample ts;
         ts.t = static_cast<double>(r.now_ns) * 1e-9;
@@ -257,7 +257,20 @@ void Daemon::writer_main() {
         impl_->telemetry->push(ts);
       }
     }
-    seen_dropped = dropped;
+    if (done && n == 0) recorder_->close();  // the loop is gone and its ring empty
+    recorder_->pump();
+    if (recorder_->safe_state_needed()) {
+      // A recording the store cannot take: the motor must not go on being
+      // driven for it. Safe first, then end the capture (or recording).
+      CoreCommand c;
+      c.kind = CoreCommand::ForceSafe;
+      c.faults = kFaultRecording;
+      post(c);
+      c.kind = CoreCommand::StopCapture;
+      post(c);
+      c.kind = CoreCommand::StopRecording;
+      post(c);
+    }
     auto fin = recorder_->take_finished();
     publish_events(fin);
     if (!fin.empty()) {
@@ -265,16 +278,25 @@ void Daemon::writer_main() {
       finished_.insert(finished_.end(), fin.begin(), fin.end());
     }
     if (n == 0) {
-      if (done) break;
+      if (done) {
+        if (recorder_->idle()) break;
+        const std::uint64_t buffered = recorder_->stats().buffered;
+        const auto now = std::chrono::steady_clock::now();
+        if (!give_up_at || buffered < last_buffered) give_up_at = now + kShutdownPatience;
+        last_buffered = buffered;
+        if (now > *give_up_at) {
+          std::fprintf(stderr, "hapticd: the store stayed busy; %llu samples not stored\n",
+                       static_cast<unsigned long long>(buffered));
+          recorder_->abandon_all("store busy at shutdown");
+          continue;
+        }
+      }
       std::this_thread::sleep_for(std::chrono::milliseconds(2));
     }
   }
-  recorder_->close();
-  auto fin = recorder_->take_finished();
-  publish_events(fin);
-  std::lock_guard lock(finished_mutex_);
-  finished_.insert(finished_.end(), fin.begin(), fin.end());
 }
+
+RecorderStats Daemon::recorder_stats() const { return recorder_->stats(); }
 
 void Daemon::publish_events(const std::vector<FinishedRecording>& finished) {
   if (impl_->handler && impl_->server) impl_->handler->publish_events(*impl_->server, finished);

@@ -25,6 +25,9 @@ void validate(const Capture& c) {
   check_length(c.alpha, "alpha");
   check_length(c.torque, "torque");
   if (c.has_command) check_length(c.command, "command");
+  if (!c.flags.empty() && c.flags.size() != n)
+    throw std::invalid_argument("flags has " + std::to_string(c.flags.size()) + " values, t has " +
+                                std::to_string(n));
   if (n < 3)
     throw std::invalid_argument("a capture needs at least 3 rows, has " + std::to_string(n));
 

@@ -31,6 +31,10 @@ CsvError::CsvError(std::string source, std::size_t line, std::size_t column, std
 namespace {
 
 enum Channel : std::size_t { kT, kTheta, kOmega, kAlpha, kTorque, kCommand, kChannelCount };
+// The flags column's index in the column map: after the channels.
+constexpr std::size_t kFlags = kChannelCount;
+
+std::string_view column_name(std::size_t ch) { return ch == kFlags ? kFlagsColumn : kChannelNames[ch]; }
 
 std::string_view trim(std::string_view s) {
   const auto ws = [](char c) { return c == ' ' || c == '\t'; };
@@ -71,10 +75,10 @@ std::string quote(std::string_view s) {
 std::string allowed_list() {
   std::string s;
   for (auto name : kChannelNames) s += (s.empty() ? "" : ", ") + std::string(name);
-  return s;
+  return s + ", " + std::string(kFlagsColumn);
 }
 
-enum class NumError { kNone, kEmpty, kNotANumber, kNotFinite, kOutOfRange };
+enum class NumError { kNone, kEmpty, kNotANumber, kNotFinite, kOutOfRange, kNotUnsigned };
 
 NumError parse_number(std::string_view f, double& out) {
   if (f.empty()) return NumError::kEmpty;
@@ -87,6 +91,17 @@ NumError parse_number(std::string_view f, double& out) {
   if (ec == std::errc::result_out_of_range) return NumError::kOutOfRange;
   if (ec != std::errc() || ptr != end) return NumError::kNotANumber;
   if (!std::isfinite(out)) return NumError::kNotFinite;
+  return NumError::kNone;
+}
+
+// A flags field: an unsigned decimal integer that fits SampleFlag's 32 bits.
+NumError parse_flags(std::string_view f, std::uint32_t& out) {
+  if (f.empty()) return NumError::kEmpty;
+  if (f.front() < '0' || f.front() > '9') return NumError::kNotUnsigned;  // no sign, no space
+  const char* end = f.data() + f.size();
+  const auto [ptr, ec] = std::from_chars(f.data(), end, out);
+  if (ec == std::errc::result_out_of_range) return NumError::kOutOfRange;
+  if (ec != std::errc() || ptr != end) return NumError::kNotUnsigned;
   return NumError::kNone;
 }
 
@@ -159,14 +174,15 @@ class Parser {
     header_line_ = line_no();
     split(header, fields_);
     if (auto c = foreign_delimiter(fields_)) fail(header_line_, 0, delimiter_message(*c));
-    std::array<std::size_t, kChannelCount> seen{};  // column (1-based) per channel, 0 = absent
+    std::array<std::size_t, kChannelCount + 1> seen{};  // column (1-based) per channel/flags, 0 = absent
     for (std::size_t i = 0; i < fields_.size(); ++i) {
       const auto name = fields_[i];
       const std::size_t col = i + 1;
       if (name.empty()) fail(header_line_, col, "empty column name");
       std::size_t ch = 0;
       while (ch < kChannelCount && kChannelNames[ch] != name) ++ch;
-      if (ch == kChannelCount) {
+      if (ch == kChannelCount && name == kFlagsColumn) ch = kFlags;
+      else if (ch == kChannelCount) {
         double ignored;
         if (parse_number(name, ignored) == NumError::kNone)
           fail(header_line_, col, "expected a header line naming the columns (" + allowed_list() +
@@ -209,8 +225,8 @@ class Parser {
   }
 
   void read_rows() {
-    std::vector<std::vector<double>*> dest;
-    for (std::size_t ch : columns_) dest.push_back(&channel(ch));
+    std::vector<std::vector<double>*> dest;  // nullptr: the flags column
+    for (std::size_t ch : columns_) dest.push_back(ch == kFlags ? nullptr : &channel(ch));
     const std::size_t n = columns_.size();
     std::size_t blank_line = 0, blanks = 0, prev_t_line = 0;
     double prev_t = 0;
@@ -234,6 +250,13 @@ class Parser {
                                    std::to_string(fields_.size()));
       }
       for (std::size_t i = 0; i < n; ++i) {
+        if (!dest[i]) {
+          std::uint32_t f = 0;
+          const NumError e = parse_flags(fields_[i], f);
+          if (e != NumError::kNone) field_error(e, i);
+          cap_.flags.push_back(f);
+          continue;
+        }
         double v = 0;
         const NumError e = parse_number(fields_[i], v);
         if (e != NumError::kNone) field_error(e, i);
@@ -251,13 +274,18 @@ class Parser {
   }
 
   [[noreturn]] void field_error(NumError e, std::size_t i) const {
-    const std::string prefix = "column '" + std::string(kChannelNames[columns_[i]]) + "': ";
+    const std::string prefix = "column '" + std::string(column_name(columns_[i])) + "': ";
     const auto f = fields_[i];
     switch (e) {
       case NumError::kEmpty: fail(line_no(), i + 1, prefix + "empty field");
       case NumError::kNotFinite: fail(line_no(), i + 1, prefix + "not finite: " + quote(f));
       case NumError::kOutOfRange:
+        if (columns_[i] == kFlags)
+          fail(line_no(), i + 1, prefix + "more than 32 bits: " + quote(f));
         fail(line_no(), i + 1, prefix + "out of double range: " + quote(f));
+      case NumError::kNotUnsigned:
+        if (auto c = foreign_delimiter(fields_)) fail(line_no(), 0, delimiter_message(*c));
+        fail(line_no(), i + 1, prefix + "not an unsigned integer (SampleFlag bits): " + quote(f));
       default:
         if (auto c = foreign_delimiter(fields_)) fail(line_no(), 0, delimiter_message(*c));
         fail(line_no(), i + 1, prefix + "not a number: " + quote(f));

@@ -2,6 +2,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <charconv>
@@ -60,15 +61,23 @@ void write_csv(const Capture& c, std::ostream& out) {
     out << (ncols ? "," : "") << kChannelNames[j];
     cols[ncols++] = all[j];
   }
+  // Flags only when there is something to say: a capture without any is
+  // the same capture without the column, and files stay as they were.
+  const bool flags = std::any_of(c.flags.begin(), c.flags.end(), [](std::uint32_t f) { return f != 0; });
+  if (flags) out << (ncols ? "," : "") << kFlagsColumn;
   out << '\n';
 
-  // 6 fields × at most 24 chars each for a shortest-form double.
-  char row[6 * 32];
+  // 6 fields × at most 24 chars each for a shortest-form double, and flags.
+  char row[7 * 32];
   for (std::size_t i = 0; i < c.size(); ++i) {
     char* p = row;
     for (std::size_t j = 0; j < ncols; ++j) {
       if (j) *p++ = ',';
       p = std::to_chars(p, row + sizeof row, (*cols[j])[i]).ptr;
+    }
+    if (flags) {
+      *p++ = ',';
+      p = std::to_chars(p, row + sizeof row, c.flags[i]).ptr;
     }
     *p++ = '\n';
     out.write(row, p - row);

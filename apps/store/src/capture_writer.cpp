@@ -99,16 +99,19 @@ void CaptureWriter::flush() {
 
 // Last batch and final status in one transaction: no crash window in which
 // all samples are there but the capture still says 'recording'.
-void CaptureWriter::close(const char* status) {
+void CaptureWriter::close(const char* status, std::string_view reason) {
   sqlite::Transaction tx(*db_);
   insert_batch();
-  db_->prepare(
-         "UPDATE captures SET status = ?2, sample_count = ?3,"
-         " finished_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = ?1")
-      .bind_int(1, id_)
-      .bind_text(2, status)
-      .bind_int(3, committed_ + static_cast<std::int64_t>(batch_.size()))
-      .run();
+  auto st = db_->prepare(
+      "UPDATE captures SET status = ?2, sample_count = ?3, end_reason = ?4,"
+      " finished_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = ?1");
+  st.bind_int(1, id_).bind_text(2, status).bind_int(
+      3, committed_ + static_cast<std::int64_t>(batch_.size()));
+  if (reason.empty())
+    st.bind_null(4);
+  else
+    st.bind_text(4, reason);
+  st.run();
   tx.commit();
   committed_batch();
   closed_ = true;
@@ -116,16 +119,23 @@ void CaptureWriter::close(const char* status) {
 
 void CaptureWriter::finish() {
   if (closed_) throw std::logic_error("capture already finished");
-  close("complete");
+  close("complete", {});
 }
 
-void CaptureWriter::abandon() {
+void CaptureWriter::finish_incomplete(std::string_view reason) {
+  if (closed_) throw std::logic_error("capture already finished");
+  if (reason.empty()) throw std::invalid_argument("an incomplete capture needs a reason");
+  close("incomplete", reason);
+}
+
+void CaptureWriter::abandon(std::string_view reason) {
   if (closed_) return;
+  if (reason.empty()) reason = "abandoned by its writer";
   try {
-    close("incomplete");
+    close("incomplete", reason);
   } catch (const StoreError&) {
     batch_.clear();  // the batch cannot be saved; keep what is committed
-    close("incomplete");
+    close("incomplete", reason);
   }
 }
 

@@ -1,7 +1,10 @@
-// Importing a whole capture atomically.
+// Importing a whole capture in short transactions, all or nothing.
+#include <chrono>
 #include <cstdio>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include "internal.hpp"
 #include "knoblab/store/store.hpp"
@@ -38,7 +41,8 @@ std::string metadata_json(const interchange::Capture& c) {
 
 }  // namespace
 
-std::int64_t Store::import_capture(const interchange::Capture& c, const NewCapture& info) {
+std::int64_t Store::import_capture(const interchange::Capture& c, const NewCapture& info,
+                                   const ImportOptions& options) {
   interchange::validate(c);  // std::invalid_argument before anything is written
 
   NewCapture row = info;
@@ -47,32 +51,82 @@ std::int64_t Store::import_capture(const interchange::Capture& c, const NewCaptu
     row.rate_hz = static_cast<double>(c.size() - 1) / (c.t.back() - c.t.front());
   if (row.metadata.empty()) row.metadata = metadata_json(c);
 
-  sqlite::Transaction tx(*db_);
-  const auto id = detail::insert_capture_row(*db_, row, "complete", c.has_command);
-  auto insert = db_->prepare(
-      "INSERT INTO samples (capture_id, idx, t, theta, omega, alpha, torque, command)"
-      " VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8)");
-  insert.bind_int(1, id);
-  for (std::size_t i = 0; i < c.size(); ++i) {
-    insert.bind_int(2, static_cast<std::int64_t>(i))
-        .bind_double(3, c.t[i])
-        .bind_double(4, c.theta[i])
-        .bind_double(5, c.omega[i])
-        .bind_double(6, c.alpha[i])
-        .bind_double(7, c.torque[i]);
-    if (c.has_command)
-      insert.bind_double(8, c.command[i]);
-    else
-      insert.bind_null(8);
-    insert.run();
+  // The row first, on its own: 'recording' with our pid, so a crash from
+  // here on is recovered like any dead writer's capture.
+  bool created_knob = false;
+  std::int64_t id = 0;
+  {
+    sqlite::Transaction tx(*db_);
+    id = detail::insert_capture_row(*db_, row, "recording", c.has_command, &created_knob);
+    tx.commit();
   }
-  db_->prepare(
-         "UPDATE captures SET sample_count = ?2,"
-         " finished_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = ?1")
-      .bind_int(1, id)
-      .bind_int(2, static_cast<std::int64_t>(c.size()))
-      .run();
-  tx.commit();
+  const std::optional<std::int64_t> knob = capture_info(id)->knob_id;
+
+  try {
+    auto insert = db_->prepare(
+        "INSERT INTO samples (capture_id, idx, t, theta, omega, alpha, torque, command, flags)"
+        " VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9)");
+    auto count = db_->prepare("UPDATE captures SET sample_count = ?2 WHERE id = ?1");
+    insert.bind_int(1, id);
+    count.bind_int(1, id);
+    using Clock = std::chrono::steady_clock;
+    std::size_t i = 0;
+    // At least one transaction, so the last one below also marks the
+    // capture complete with its last batch.
+    for (bool last = false; !last;) {
+      sqlite::Transaction tx(*db_);
+      const auto until = Clock::now() + options.max_transaction;
+      do {
+        insert.bind_int(2, static_cast<std::int64_t>(i))
+            .bind_double(3, c.t[i])
+            .bind_double(4, c.theta[i])
+            .bind_double(5, c.omega[i])
+            .bind_double(6, c.alpha[i])
+            .bind_double(7, c.torque[i]);
+        if (c.has_command)
+          insert.bind_double(8, c.command[i]);
+        else
+          insert.bind_null(8);
+        insert.bind_int(9, c.flags.empty() ? 0 : c.flags[i]);
+        insert.run();
+        ++i;
+      } while (i < c.size() && Clock::now() < until);
+      last = i == c.size();
+      if (last) {
+        // Last batch and 'complete' in one commit: no crash leaves every
+        // sample there but the capture still 'recording'.
+        db_->prepare(
+               "UPDATE captures SET status = 'complete', sample_count = ?2,"
+               " finished_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE id = ?1")
+            .bind_int(1, id)
+            .bind_int(2, static_cast<std::int64_t>(i))
+            .run();
+      } else {
+        count.bind_int(2, static_cast<std::int64_t>(i)).run();
+      }
+      tx.commit();
+      if (options.on_commit) options.on_commit(static_cast<std::int64_t>(i));
+      if (!last && options.pause.count() > 0) std::this_thread::sleep_for(options.pause);
+    }
+  } catch (...) {
+    // Take the partial capture (and a knob made for it) out again, so a
+    // failed import leaves the store as it was. If even that fails, the row
+    // stays 'recording' under our pid and the next open after we exit marks
+    // it 'incomplete'; the original error is the one to report.
+    try {
+      sqlite::Transaction tx(*db_);
+      db_->prepare("DELETE FROM captures WHERE id = ?1").bind_int(1, id).run();
+      if (created_knob && knob)
+        db_->prepare(
+               "DELETE FROM knobs WHERE id = ?1"
+               " AND NOT EXISTS (SELECT 1 FROM captures WHERE knob_id = ?1)")
+            .bind_int(1, *knob)
+            .run();
+      tx.commit();
+    } catch (const StoreError&) {
+    }
+    throw;
+  }
   return id;
 }
 

@@ -11,7 +11,7 @@ namespace knoblab::store {
 const char* const detail::kCaptureColumns =
     "c.id, c.knob_id, coalesce(k.name, ''), c.mode, c.rate_hz, c.stimulus, c.orientation,"
     " c.calibration, c.source, c.status, c.writer_pid, c.has_command, c.started_at,"
-    " c.finished_at, c.sample_count, c.metadata"
+    " c.finished_at, c.sample_count, c.metadata, c.end_reason"
     " FROM captures c LEFT JOIN knobs k ON k.id = c.knob_id";
 
 CaptureInfo detail::read_capture_row(const sqlite::Statement& st) {
@@ -32,6 +32,7 @@ CaptureInfo detail::read_capture_row(const sqlite::Statement& st) {
   if (!st.is_null(13)) c.finished_at = st.column_text(13);
   c.sample_count = st.column_int(14);
   c.metadata = st.column_text(15);
+  if (!st.is_null(16)) c.end_reason = st.column_text(16);
   return c;
 }
 
@@ -114,6 +115,7 @@ interchange::Capture Store::load_samples(std::int64_t id) {
   m.emplace_back("rate_hz", number(info->rate_hz));
   m.emplace_back("source", one_line(info->source));
   m.emplace_back("status", info->status);
+  if (info->end_reason) m.emplace_back("end_reason", one_line(*info->end_reason));
   m.emplace_back("started_at", info->started_at);
   if (info->finished_at) m.emplace_back("finished_at", *info->finished_at);
   m.emplace_back("sample_count", std::to_string(c.size()));

@@ -4,7 +4,8 @@
 // (another knoblab, hapticd), so status alone proves nothing: only a writer
 // that no longer exists - kill(pid, 0) says ESRCH, or the row comes from an
 // earlier boot - is taken as crashed. Its committed batches are kept; the
-// capture becomes 'incomplete' with sample_count = the rows actually there.
+// capture becomes 'incomplete' with sample_count = the rows actually there
+// and an end_reason naming the writer.
 // (The writer must also be reaped: a zombie still counts as alive.)
 #include <vector>
 
@@ -38,6 +39,8 @@ std::vector<std::int64_t> Store::recover_interrupted() {
   auto mark = db_->prepare(
       "UPDATE captures SET status = 'incomplete',"
       " sample_count = (SELECT count(*) FROM samples WHERE capture_id = ?1),"
+      " end_reason = 'interrupted: its writer (' || source || ', pid ' ||"
+      "   coalesce(writer_pid, '?') || ') ended without finishing it',"
       " finished_at = strftime('%Y-%m-%dT%H:%M:%fZ', 'now')"
       " WHERE id = ?1 AND status = 'recording'");
   for (const auto id : dead) mark.bind_int(1, id).run();

@@ -92,6 +92,14 @@ CREATE TABLE fit_files (
   UNIQUE (fit_id, name)
 );
 )sql",
+    // 5: why a capture is incomplete, in words a person reads in `knoblab
+    // list` ("fault: estop", "ring dropped 12 samples", "store busy", ...).
+    // NULL for a capture that ended normally and for incomplete captures
+    // stored before this version; only incomplete captures carry one.
+    R"sql(
+ALTER TABLE captures ADD COLUMN end_reason TEXT
+  CHECK (end_reason IS NULL OR (length(end_reason) > 0 AND status = 'incomplete'));
+)sql",
 };
 
 #undef KNOBLAB_NOW

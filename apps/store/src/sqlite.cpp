@@ -18,11 +18,19 @@ namespace {
 
 // ---- Connection -----------------------------------------------------------
 
+bool is_busy(const StoreError& e) { return (e.sqlite_code() & 0xff) == SQLITE_BUSY; }
+
 Connection Connection::open(const std::filesystem::path& path) {
+  return open(path, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
+}
+
+Connection Connection::open_read_only(const std::filesystem::path& path) {
+  return open(path, SQLITE_OPEN_READONLY);
+}
+
+Connection Connection::open(const std::filesystem::path& path, int flags) {
   sqlite3* db = nullptr;
-  const int rc = sqlite3_open_v2(path.c_str(), &db,
-                                 SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_EXRESCODE,
-                                 nullptr);
+  const int rc = sqlite3_open_v2(path.c_str(), &db, flags | SQLITE_OPEN_EXRESCODE, nullptr);
   if (rc != SQLITE_OK) {
     // sqlite hands back a handle even on failure, to carry the message.
     std::string msg = "cannot open database " + path.string() + ": " +
@@ -84,6 +92,10 @@ std::int64_t Connection::last_insert_rowid() const { return sqlite3_last_insert_
 std::int64_t Connection::changes() const { return sqlite3_changes64(db_); }
 
 bool Connection::in_transaction() const { return sqlite3_get_autocommit(db_) == 0; }
+
+void Connection::set_busy_timeout(int ms) {
+  if (const int rc = sqlite3_busy_timeout(db_, ms); rc != SQLITE_OK) fail(rc, "busy_timeout");
+}
 
 void Connection::fail(int rc, std::string_view context) const { throw_sqlite(db_, rc, context); }
 

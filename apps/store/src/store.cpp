@@ -38,40 +38,90 @@ std::string enable_wal(sqlite::Connection& db, int timeout_ms) {
 
 }  // namespace
 
+Store Store::open_read_only(const std::filesystem::path& path, const OpenOptions& options) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec))
+    throw StoreError(path.string() + ": no such store (reading never creates one)");
+  auto db = std::make_shared<sqlite::Connection>(sqlite::Connection::open_read_only(path));
+  db->set_busy_timeout(options.busy_timeout_ms);
+  const int version = store::schema_version(*db);
+  check_schema_not_newer(version);
+  if (version < latest_schema_version()) {
+    // This binary's queries need the current schema: upgrade once, briefly
+    // read-write, then read as asked.
+    db.reset();
+    OpenOptions rw = options;
+    rw.read_only = false;
+    rw.recover = false;
+    Store::open(path, rw);
+    db = std::make_shared<sqlite::Connection>(sqlite::Connection::open_read_only(path));
+    db->set_busy_timeout(options.busy_timeout_ms);
+  }
+  db->exec("PRAGMA foreign_keys = ON");
+  return Store(std::move(db));
+}
+
 Store Store::open(const std::filesystem::path& path, const OpenOptions& options) {
+  if (options.read_only) {
+    try {
+      return open_read_only(path, options);
+    } catch (const StoreError& e) {
+      const std::string what = e.what();
+      if (what.starts_with(path.string())) throw;
+      throw StoreError(path.string() + ": " + what, e.sqlite_code());
+    }
+  }
   auto db = std::make_shared<sqlite::Connection>(sqlite::Connection::open(path));
   try {
-    db->exec("PRAGMA busy_timeout = " + std::to_string(options.busy_timeout_ms));
+    db->set_busy_timeout(options.busy_timeout_ms);
     db->exec("PRAGMA foreign_keys = ON");
     // Before anything writes: never touch a database from a newer knoblab.
-    check_schema_not_newer(store::schema_version(*db));
-    // WAL: readers (list, export) never block the capture writer.
-    const std::string mode = enable_wal(*db, options.busy_timeout_ms);
-    if (mode != "wal") throw StoreError("cannot switch to WAL journal mode (got '" + mode + "')");
+    const int version = store::schema_version(*db);
+    check_schema_not_newer(version);
+    // WAL: readers (list, export) never block the capture writer. Asked only
+    // when not yet set: switching needs a lock, asking does not.
+    if (db->query_text("PRAGMA journal_mode") != "wal") {
+      const std::string mode = enable_wal(*db, options.busy_timeout_ms);
+      if (mode != "wal") throw StoreError("cannot switch to WAL journal mode (got '" + mode + "')");
+    }
     // FULL: every committed batch is on disk, even across a power cut.
     db->exec("PRAGMA synchronous = FULL");
-    migrate(*db);
+    // A current schema is the common case: no transaction, so opening never
+    // waits for another process's write lock.
+    if (version < latest_schema_version()) migrate(*db);
   } catch (const StoreError& e) {
     throw StoreError(path.string() + ": " + e.what(), e.sqlite_code());
   }
   Store store(std::move(db));
-  if (options.recover) store.recover_interrupted();
+  if (options.recover) {
+    try {
+      store.recover_interrupted();
+    } catch (const StoreError& e) {
+      // Another writer holds the lock longer than our timeout: the dead
+      // writer's capture stays 'recording' until a later open marks it;
+      // this open still works.
+      if (!sqlite::is_busy(e)) throw StoreError(path.string() + ": " + e.what(), e.sqlite_code());
+    }
+  }
   return store;
 }
 
 int Store::schema_version() { return store::schema_version(*db_); }
+
+void Store::set_busy_timeout(int ms) { db_->set_busy_timeout(ms); }
 
 std::string Store::integrity_check() { return db_->query_text("PRAGMA integrity_check"); }
 
 // ---- knobs ----------------------------------------------------------------
 
 std::optional<std::int64_t> detail::resolve_knob(sqlite::Connection& db, std::string_view name,
-                                                 std::string_view description) {
+                                                 std::string_view description, bool* created) {
   if (name.empty()) return std::nullopt;
   db.prepare("INSERT INTO knobs (name, description) VALUES (?1, ?2) ON CONFLICT (name) DO NOTHING")
       .bind_text(1, name)
       .bind_text(2, description)
       .run();
+  if (created) *created = db.changes() == 1;
   auto st = db.prepare("SELECT id FROM knobs WHERE name = ?1");
   st.bind_text(1, name);
   if (!st.step()) throw StoreError("knob '" + std::string(name) + "' vanished");
@@ -97,8 +147,9 @@ std::vector<KnobInfo> Store::list_knobs() {
 // ---- captures -------------------------------------------------------------
 
 std::int64_t detail::insert_capture_row(sqlite::Connection& db, const NewCapture& info,
-                                        std::string_view status, bool has_command) {
-  const auto knob = resolve_knob(db, info.knob);
+                                        std::string_view status, bool has_command,
+                                        bool* created_knob) {
+  const auto knob = resolve_knob(db, info.knob, {}, created_knob);
   auto st = db.prepare(
       "INSERT INTO captures (knob_id, mode, rate_hz, stimulus, orientation, calibration, source,"
       " status, writer_pid, writer_boot, has_command, metadata)"

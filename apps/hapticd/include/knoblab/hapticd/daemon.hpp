@@ -42,6 +42,9 @@ struct DaemonConfig {
   // Render model loaded at start (hapticd --model FILE): rendered once the
   // mode is set to render, and the base later set_params calls change.
   std::optional<RenderParams> initial_model;
+  // Samples the recorder holds while the store is busy; beyond that the
+  // recording is cut and the motor made safe. 0: 60 s at the loop rate.
+  std::size_t record_buffer_samples = 0;
 };
 
 class Daemon {
@@ -84,6 +87,8 @@ class Daemon {
   const DaemonConfig& config() const { return cfg_; }
   const rt::StatsPublisher& stats() const { return *stats_; }
   std::uint64_t ring_dropped() const;
+  // What the recorder holds for a busy store, and how often it had to retry.
+  RecorderStats recorder_stats() const;
 
  private:
   struct Impl;

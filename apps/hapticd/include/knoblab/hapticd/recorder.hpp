@@ -1,10 +1,21 @@
 // The non-realtime end of the loop's ring: every record of a recording goes
-// into the store in committed batches; a few per second go to telemetry.
-// Runs on the writer thread; nothing here is ever called by the loop.
+// into the store in committed batches. Runs on the writer thread; nothing
+// here is ever called by the loop.
+//
+// Taking a record (take) never touches the store: it only buffers, so the
+// writer thread keeps draining the ring however slow the store is. Writing
+// (pump) waits for another writer's lock at most a few milliseconds per
+// attempt; while the store stays busy (an import, another process) the
+// samples wait in memory and the next pump retries. The buffer is bounded;
+// a recording that outgrows it, or meets a store error that is not "busy",
+// cannot be stored: it is cut there, marked 'incomplete' with the reason,
+// and safe_state_needed() asks the daemon to stop it and make the motor safe.
 #pragma once
 
+#include <atomic>
+#include <cstddef>
 #include <cstdint>
-#include <functional>
+#include <deque>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -17,52 +28,120 @@ namespace knoblab::hapticd {
 
 struct FinishedRecording {
   std::uint32_t recording_id = 0;
-  std::int64_t capture_id = 0;
-  std::int64_t samples = 0;
-  bool complete = true;  // false when the ring dropped samples of it
+  std::int64_t capture_id = 0;  // 0 when nothing was stored
+  std::int64_t samples = 0;     // committed to the store (taken, without a store)
+  bool complete = true;         // false: see end_reason
+  // Why it is incomplete, as stored in captures.end_reason: "fault: estop",
+  // "ring dropped 12 samples", "store busy", "store error: …"; joined by
+  // "; " when several. Empty when complete.
+  std::string end_reason;
+};
+
+// How much the recorder holds in memory for a busy store, and how hard it
+// has had to try. Read from any thread.
+struct RecorderStats {
+  std::uint64_t buffered = 0;      // samples taken from the ring, not yet committed
+  std::uint64_t max_buffered = 0;  // the most buffered at any time
+  std::uint64_t capacity = 0;      // buffered beyond this cuts the recording
+  std::uint64_t retries = 0;       // store attempts that found the database busy
+  std::uint64_t failed = 0;        // recordings cut because they could not be stored
+};
+
+struct RecorderOptions {
+  // Samples held for a busy store; 0: 60 s at the defaults' rate_hz.
+  std::size_t max_buffered = 0;
+  // Each store attempt waits this long for another writer's lock, then the
+  // writer thread goes back to the ring and retries on the next pump.
+  int busy_timeout_ms = 10;
 };
 
 class Recorder {
  public:
-  // `defaults` describes recordings nobody described (e.g. a trial).
-  Recorder(store::Store* store, store::NewCapture defaults) : store_(store), defaults_(std::move(defaults)) {}
+  // `defaults` describes recordings nobody described (e.g. a trial). With a
+  // store, sets that connection's busy timeout (options.busy_timeout_ms).
+  Recorder(store::Store* store, store::NewCapture defaults, RecorderOptions options = {});
 
-  // How the next recording is described in the store (set before starting it).
+  // How the next recording is described in the store (set before starting
+  // it; any thread).
   void describe_next(const store::NewCapture& info);
+  void set_max_buffered(std::size_t samples);
 
-  // One record from the ring, in order. `dropped_before` = records the ring
-  // lost since the previous call (they make the open capture incomplete).
-  void take(const LoopRecord& record, std::uint64_t dropped_before);
-  // The loop stopped: close whatever is open.
+  // One record from the ring, in order of LoopRecord::seq: a gap in seq is
+  // records the ring lost, charged to the recording they belonged to.
+  // Buffers only; never blocks, never throws for the store.
+  void take(const LoopRecord& record);
+  // Writes what was taken, as far as the store lets it now, for at most
+  // about 50 ms (so the writer thread gets back to the ring).
+  void pump();
+  // The loop stopped: the open recording ends with its last record.
   void close();
-  // The store failed: forget the open capture (it stays 'incomplete') and
-  // ignore the rest of that recording.
-  void drop_open();
+  // Nothing taken is left to write (after close(): everything is stored).
+  bool idle() const { return recordings_.empty(); }
+  // Gives up on everything still buffered (the store stayed busy at shutdown):
+  // marks what it can 'incomplete' with `reason`.
+  void abandon_all(const std::string& reason);
+
+  // True once per recording that could not be stored: the caller stops it
+  // and puts the motor in the safe state (kFaultRecording).
+  bool safe_state_needed();
 
   // Biometrics arrive from the Modbus thread, `t` in CLOCK_MONOTONIC
-  // seconds: kept for the open capture, rebased onto its clock.
+  // seconds: kept for the open recording, rebased onto its clock.
   void add_biometrics(const store::BiometricSample& b);
 
-  // Recordings that ended since the last call.
+  // Recordings that ended and were stored since the last call.
   std::vector<FinishedRecording> take_finished();
 
+  RecorderStats stats() const;
+
  private:
-  void open(std::uint32_t recording_id);
-  void finish();
+  // One recording on its way into the store; the front of recordings_ is the
+  // one being written, the back the one the loop may still be recording.
+  struct Recording {
+    std::uint32_t id = 0;
+    store::NewCapture info;
+    std::optional<store::CaptureWriter> writer;  // once its row exists
+    std::deque<store::Sample> samples;           // taken, not yet handed to the writer
+    std::int64_t taken = 0;
+    std::uint32_t faults = 0;     // every Fault bit latched during it
+    bool stopped = false;         // its last record says it was stopped by request
+    std::uint64_t lost = 0;       // records the ring dropped (seq gaps) that were, or may have been, its
+    bool lost_maybe = false;      // some of `lost` may have belonged to a neighbour
+    std::uint64_t unstorable = 0; // samples the writer refused (non-finite values)
+    std::string unstorable_why;
+    std::string cut;              // why it was cut short ("store busy", "store error: …")
+    bool discard = false;         // a store error: nothing more of it is written
+    bool ended = false;           // its last record has been taken
+    std::vector<store::BiometricSample> bio;
+    bool bio_saved = false;
+    double last_t = 0.0;          // t of its newest sample
+  };
+
+  void start(const LoopRecord& r);
+  void end_back();
+  void cut(Recording& rec, const std::string& why, bool discard);
+  void finalize_front();
+  std::string end_reason(const Recording& rec) const;
+  void update_stats();
 
   store::Store* store_;
   store::NewCapture defaults_;
+  RecorderOptions options_;
+  std::mutex next_mutex_;  // describe_next() comes from control threads
   std::optional<store::NewCapture> next_;
-  std::optional<store::CaptureWriter> writer_;
-  std::uint32_t recording_id_ = 0;
-  bool lost_samples_ = false;
-  std::uint32_t dropped_recording_ = 0;  // after drop_open(): its records are ignored
+  std::deque<Recording> recordings_;
+  std::uint32_t current_ = 0;      // recording_id of the newest record taken
+  std::uint64_t next_seq_ = 0;     // seq the next record should have
+  std::size_t queued_ = 0;         // samples in all recordings' deques
+  bool safe_needed_ = false;
   std::vector<FinishedRecording> finished_;
+
   mutable std::mutex bio_mutex_;
+  bool bio_open_ = false;          // a recording is open: biometrics are kept
   std::vector<store::BiometricSample> bio_;
-  std::int64_t open_capture_ = 0;
-  double start_s_ = 0.0;
-  double last_t_ = 0.0;   // t of the open capture's newest sample  // CLOCK_MONOTONIC of the open capture's first sample
+  double start_s_ = 0.0;           // CLOCK_MONOTONIC of the open recording's t = 0
+
+  std::atomic<std::uint64_t> buffered_{0}, max_buffered_{0}, capacity_{0}, retries_{0}, failed_{0};
 };
 
 }  // namespace knoblab::hapticd

@@ -11,9 +11,13 @@
 
 namespace knoblab::interchange {
 
-// Column names of the CSV format, in the order write_csv emits them.
+// Column names of the CSV format's channels, in the order write_csv emits
+// them.
 inline constexpr std::array<std::string_view, 6> kChannelNames = {
     "t", "theta", "omega", "alpha", "torque", "command"};
+// The optional last column: each row's SampleFlag bits as an unsigned
+// decimal integer (not a channel: no unit, never derived).
+inline constexpr std::string_view kFlagsColumn = "flags";
 
 struct Capture {
   // `# key: value` lines, in file order. An empty key is a free comment.
@@ -25,7 +29,9 @@ struct Capture {
   std::vector<double> alpha;   // rad/s²
   std::vector<double> torque;  // N·m
   std::vector<double> command; // V; empty unless has_command
-  std::vector<std::uint32_t> flags;  // Sample::flags from the store; empty from a CSV
+  // SampleFlag bits per row (what the loop did: amplifier on, e-stop, fault,
+  // torque limited); empty when unknown (a CSV without a flags column).
+  std::vector<std::uint32_t> flags;
 
   bool has_command = false;
   bool omega_derived = false;  // omega was absent from the file
@@ -37,8 +43,9 @@ struct Capture {
   const std::string* find_metadata(std::string_view key) const;
 };
 
-// Throws std::invalid_argument naming the first problem: channels of unequal
-// length, fewer than 3 rows, non-finite values, t not strictly increasing.
+// Throws std::invalid_argument naming the first problem: channels (or
+// non-empty flags) of unequal length, fewer than 3 rows, non-finite values,
+// t not strictly increasing.
 // Everything that passes can be written and read back by the CSV code.
 void validate(const Capture& capture);
 

@@ -1,11 +1,12 @@
 // The knoblab interchange CSV. Outside benchmarks read it too: keep it stable.
 //
 //   # key: value            optional metadata lines, kept in order
-//   t,theta,torque[,omega][,alpha][,command]   one header, any column order
+//   t,theta,torque[,omega][,alpha][,command][,flags]   one header, any column order
 //   0.0001,0.12,0.003       rows, SI units, '.' decimal point
 //
 // t, theta and torque are required. Missing omega/alpha are derived from
-// theta/omega (see derive.hpp) and flagged in the Capture. Whitespace around
+// theta/omega (see derive.hpp) and flagged in the Capture. flags holds each
+// row's SampleFlag bits as an unsigned integer. Whitespace around
 // fields, CRLF line ends, a UTF-8 BOM and trailing empty lines are tolerated;
 // everything else that is off is a CsvError naming line and column.
 #pragma once
@@ -48,7 +49,9 @@ class CsvError : public std::runtime_error {
 Capture parse_csv(std::istream& in, std::string_view source_name);
 Capture read_csv(const std::filesystem::path& path);
 
-// Writes metadata, header and rows (ω, α only when not derived); doubles in
+// Writes metadata, header and rows (ω, α only when not derived; flags only
+// when some row has a flag set: all-zero flags read back the same without
+// the column); doubles in
 // shortest round-trip form, so read_csv(write_csv(c)) reproduces every value
 // bit for bit. Throws
 // std::invalid_argument for a capture validate() rejects or for metadata a

@@ -13,7 +13,7 @@ struct Sample {
   double alpha = 0.0;    // rad/s², accelerometer, calibrated, gravity removed
   double torque = 0.0;   // N·m, torque sensor, offset removed
   double command = 0.0;  // V, amplifier command written this cycle
-  std::uint32_t flags = 0;  // loop state (SampleFlag bits); the store keeps it, the CSV does not
+  std::uint32_t flags = 0;  // loop state (SampleFlag bits); the CSV's optional flags column
 };
 
 // Bits of Sample::flags: what the loop did and why, sample by sample.

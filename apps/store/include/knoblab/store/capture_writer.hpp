@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <string_view>
 #include <vector>
 
 #include "knoblab/store/sqlite.hpp"
@@ -31,7 +32,8 @@ class CaptureWriter {
   CaptureWriter& operator=(CaptureWriter&&) = delete;
   CaptureWriter(const CaptureWriter&) = delete;
   CaptureWriter& operator=(const CaptureWriter&) = delete;
-  // Not finished: flushes what it can and marks the capture 'incomplete'.
+  // Not finished: abandon() - flushes what it can and marks the capture
+  // 'incomplete'.
   ~CaptureWriter();
 
   std::int64_t capture_id() const { return id_; }
@@ -42,9 +44,15 @@ class CaptureWriter {
   // commit fails: nothing buffered is lost, the next append() or flush()
   // retries (appended() tells whether this sample was taken).
   void append(const Sample& sample);
-  void flush();    // commit whatever is buffered now
-  void finish();   // flush, mark 'complete'
-  void abandon();  // flush, mark 'incomplete' (e.g. the capture was aborted)
+  void flush();   // commit whatever is buffered now
+  void finish();  // flush, mark 'complete'
+  // Flush, mark 'incomplete' with this end_reason (not empty; e.g. "fault:
+  // estop"). Like finish(), a StoreError (e.g. the database is busy) loses
+  // nothing and leaves the writer open: call it again later.
+  void finish_incomplete(std::string_view reason);
+  // Best effort, for when the capture cannot go on: flush, mark 'incomplete'
+  // with `reason`; if the batch cannot be saved, mark it without the batch.
+  void abandon(std::string_view reason = "abandoned by its writer");
 
   std::int64_t committed() const { return committed_; }
   std::int64_t appended() const { return committed_ + static_cast<std::int64_t>(batch_.size()); }
@@ -55,7 +63,7 @@ class CaptureWriter {
                 WriterOptions options);
   void insert_batch();
   void committed_batch();
-  void close(const char* status);
+  void close(const char* status, std::string_view reason);
 
   std::shared_ptr<sqlite::Connection> db_;  // the Store's connection
   std::int64_t id_;

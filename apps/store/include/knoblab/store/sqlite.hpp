@@ -19,10 +19,17 @@ namespace knoblab::store::sqlite {
 
 class Statement;
 
+// SQLITE_BUSY (any extended code): another connection holds the lock; the
+// same operation may succeed later.
+bool is_busy(const StoreError& e);
+
 class Connection {
  public:
   // Opens read-write, creating the file if needed.
   static Connection open(const std::filesystem::path& path);
+  // Opens an existing file read-only: every write fails with SQLITE_READONLY,
+  // and the connection never takes the write lock.
+  static Connection open_read_only(const std::filesystem::path& path);
 
   Connection(Connection&& other) noexcept;
   Connection& operator=(Connection&& other) noexcept;
@@ -41,12 +48,16 @@ class Connection {
   std::int64_t last_insert_rowid() const;
   std::int64_t changes() const;  // rows changed by the last statement
   bool in_transaction() const;
+  // How long a statement waits for another connection's lock before it fails
+  // with SQLITE_BUSY (sqlite's busy handler, polling).
+  void set_busy_timeout(int ms);
   sqlite3* handle() const { return db_; }
 
   [[noreturn]] void fail(int rc, std::string_view context) const;
 
  private:
   explicit Connection(sqlite3* db) : db_(db) {}
+  static Connection open(const std::filesystem::path& path, int flags);
   sqlite3* db_ = nullptr;
 };
 

@@ -8,11 +8,15 @@
 //   interchange::write_csv(store.load_samples(w.capture_id()), "fan.csv");
 //
 // A Store is one connection: use it from one thread at a time. Several
-// processes may open the same file; sqlite serialises their writes.
+// processes may open the same file; sqlite serialises their writes, and
+// every writer here keeps its transactions short (a batch of samples), so
+// none waits on another for long. Readers never wait on writers (WAL).
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -31,12 +35,30 @@ namespace knoblab::store {
 struct OpenOptions {
   int busy_timeout_ms = 5000;  // wait this long for another writer's lock
   bool recover = true;         // run recover_interrupted() after opening
+  // Open for reading only (list, export): the connection never writes, so it
+  // never waits for another writer's lock, and writes fail. The file must
+  // exist; one with an older schema is first upgraded by a brief read-write
+  // open. No recovery.
+  bool read_only = false;
+};
+
+struct ImportOptions {
+  // Each transaction ends once it has run this long (its commit comes on
+  // top), so another writer - hapticd recording - never waits much longer.
+  std::chrono::milliseconds max_transaction{100};
+  // Pause after each commit: sqlite's write lock is not fair, and a writer
+  // polling from its busy handler gets in only while nobody holds it.
+  std::chrono::milliseconds pause{20};
+  // Called after each commit with the samples committed so far.
+  std::function<void(std::int64_t committed)> on_commit;
 };
 
 class Store {
  public:
-  // Opens (creating if needed) and migrates the schema. Throws StoreError,
-  // e.g. for a database written by a newer knoblab.
+  // Opens (creating if needed) and migrates an older schema. Takes the write
+  // lock only when there is something to write (a migration, a dead writer's
+  // capture to mark). Throws StoreError, e.g. for a database written by a
+  // newer knoblab.
   static Store open(const std::filesystem::path& path, const OpenOptions& options = {});
 
   Store(Store&&) noexcept;
@@ -45,8 +67,12 @@ class Store {
 
   int schema_version();
 
+  // Replaces OpenOptions::busy_timeout_ms for this connection.
+  void set_busy_timeout(int ms);
+
   // Marks captures left 'recording' by a process that no longer exists as
-  // 'incomplete' (their committed samples stay). Returns their ids.
+  // 'incomplete' (their committed samples stay), with an end_reason saying
+  // so. Returns their ids.
   std::vector<std::int64_t> recover_interrupted();
 
   // Id of the knob with this name, creating it if needed.
@@ -56,17 +82,25 @@ class Store {
   // Inserts a 'recording' capture row and returns its writer.
   CaptureWriter begin_capture(const NewCapture& info, WriterOptions options = {});
 
-  // All of `capture` as one 'complete' capture, in one transaction: on any
-  // error nothing is left behind. Throws std::invalid_argument for a capture
-  // interchange::validate() rejects, StoreError for database failures.
-  std::int64_t import_capture(const interchange::Capture& capture, const NewCapture& info);
+  // All of `capture` as one 'complete' capture (its flags too, when it has
+  // them), written in short transactions so other writers go on meanwhile:
+  // the row first, 'recording' with our pid; the samples in committed batches
+  // (see ImportOptions); 'complete' last. Readers see it 'recording' with the
+  // samples committed so far. On any error the partial capture - and a knob
+  // it created - is removed again; if the process dies instead, the next
+  // open marks it 'incomplete'. Throws std::invalid_argument (before writing
+  // anything) for a capture interchange::validate() rejects, StoreError for
+  // database failures.
+  std::int64_t import_capture(const interchange::Capture& capture, const NewCapture& info,
+                              const ImportOptions& options = {});
 
   std::vector<CaptureInfo> list_captures();  // by id
   std::optional<CaptureInfo> capture_info(std::int64_t id);
 
   // Committed samples in order; metadata carries the capture's fields
-  // (capture_id, knob, mode, rate_hz, source, status, times, sample_count,
-  // stimulus, orientation, calibration, metadata). Throws for an unknown id.
+  // (capture_id, knob, mode, rate_hz, source, status, end_reason when there
+  // is one, times, sample_count, stimulus, orientation, calibration,
+  // metadata). Throws for an unknown id.
   // Note: sqlite stores -0.0 as 0.0; all other values come back bit-exact.
   interchange::Capture load_samples(std::int64_t id);
 
@@ -102,6 +136,7 @@ class Store {
 
  private:
   explicit Store(std::shared_ptr<sqlite::Connection> db);
+  static Store open_read_only(const std::filesystem::path& path, const OpenOptions& options);
 
   // Shared with the writers, so a writer outliving its Store stays valid.
   std::shared_ptr<sqlite::Connection> db_;

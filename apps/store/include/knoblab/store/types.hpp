@@ -37,6 +37,10 @@ struct CaptureInfo {
   double rate_hz = 0;
   std::string stimulus, orientation, calibration, source;
   std::string status;  // 'recording' | 'complete' | 'incomplete'
+  // Why an incomplete capture ended early or lost samples (e.g. "fault:
+  // estop", "ring dropped 12 samples", "store busy"); none when it ended
+  // normally (and for incomplete captures stored before schema version 5).
+  std::optional<std::string> end_reason;
   std::optional<std::int64_t> writer_pid;
   bool has_command = false;
   std::string started_at;                  // ISO 8601 UTC

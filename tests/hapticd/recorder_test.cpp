@@ -1,0 +1,280 @@
+// The recorder on its own, fed loop records by hand: what ends up in the
+// store when faults latch, when the ring drops records, when another writer
+// holds the store and when the store fails.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+
+#include "knoblab/hapticd/recorder.hpp"
+#include "knoblab/store/store.hpp"
+
+namespace knoblab::hapticd {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+
+struct TempDb {
+  std::filesystem::path dir;
+  TempDb() {
+    std::string tmpl = "/tmp/knoblab-recorder-XXXXXX";
+    dir = mkdtemp(tmpl.data());
+  }
+  ~TempDb() { std::filesystem::remove_all(dir); }
+  std::filesystem::path path() const { return dir / "lab.sqlite"; }
+};
+
+store::NewCapture defaults() {
+  store::NewCapture d;
+  d.knob = "fan";
+  d.rate_hz = 10000;
+  d.source = "hapticd";
+  return d;
+}
+
+// Cycle `seq` of a 10 kHz loop that started at CLOCK_MONOTONIC 1 s.
+LoopRecord record(std::uint64_t seq, std::uint32_t recording, std::uint32_t faults = 0) {
+  LoopRecord r;
+  r.seq = seq;
+  r.recording_id = recording;
+  r.faults = faults;
+  r.now_ns = 1'000'000'000 + static_cast<std::int64_t>(seq) * 100'000;
+  r.sample.t = static_cast<double>(seq) * 1e-4;
+  r.sample.theta = 0.001 * static_cast<double>(seq);
+  r.sample.command = 0.5;
+  r.sample.flags = faults ? interchange::kFaultLatched : interchange::kAmpEnabled;
+  r.mode = Mode::Render;
+  return r;
+}
+
+// Feeds cycles [from, to) as the writer thread does: a pump every 512.
+void feed(Recorder& rec, std::uint64_t from, std::uint64_t to, std::uint32_t recording,
+          std::uint32_t faults = 0) {
+  for (std::uint64_t s = from; s < to; ++s) {
+    rec.take(record(s, recording, faults));
+    if ((s + 1) % 512 == 0) rec.pump();
+  }
+  rec.pump();
+}
+
+// Pumps until everything taken is stored (or gives up after a while).
+void drain(Recorder& rec) {
+  for (int i = 0; i < 10000 && !rec.idle(); ++i) rec.pump();
+  ASSERT_TRUE(rec.idle());
+}
+
+store::Store reader(const TempDb& db) {
+  store::OpenOptions o;
+  o.read_only = true;
+  return store::Store::open(db.path(), o);
+}
+
+TEST(Recorder, ARecordingDuringWhichAFaultLatchedIsStoredIncompleteWithTheFault) {
+  TempDb db;
+  store::Store s = store::Store::open(db.path());
+  Recorder rec(&s, defaults());
+  feed(rec, 0, 100, 0);
+  feed(rec, 100, 150, 1);
+  feed(rec, 150, 400, 1, kFaultEstop | kFaultVelocity);  // the motor held safe from here
+  feed(rec, 400, 500, 0, kFaultEstop);
+  feed(rec, 500, 700, 2);  // cleared: the next recording is clean
+  feed(rec, 700, 710, 0);
+  rec.close();
+  drain(rec);
+
+  const auto fin = rec.take_finished();
+  ASSERT_EQ(fin.size(), 2u);
+  EXPECT_FALSE(fin[0].complete);
+  EXPECT_EQ(fin[0].end_reason, "fault: estop,velocity");
+  EXPECT_EQ(fin[0].samples, 300);
+  EXPECT_TRUE(fin[1].complete);
+  EXPECT_EQ(fin[1].end_reason, "");
+
+  auto r = reader(db);
+  const auto faulted = r.capture_info(fin[0].capture_id);
+  EXPECT_EQ(faulted->status, "incomplete");
+  EXPECT_EQ(faulted->end_reason, "fault: estop,velocity");
+  EXPECT_EQ(faulted->sample_count, 300);
+  const auto clean = r.capture_info(fin[1].capture_id);
+  EXPECT_EQ(clean->status, "complete");
+  EXPECT_FALSE(clean->end_reason.has_value());
+  EXPECT_EQ(clean->sample_count, 200);
+}
+
+TEST(Recorder, ARingDropWhileNotRecordingDoesNotMarkTheNextRecordingIncomplete) {
+  TempDb db;
+  store::Store s = store::Store::open(db.path());
+  Recorder rec(&s, defaults());
+  feed(rec, 0, 50, 0);
+  feed(rec, 80, 100, 0);  // cycles 50..79 lost while idle
+  feed(rec, 100, 300, 1);
+  feed(rec, 300, 310, 0);
+  rec.close();
+  drain(rec);
+  const auto fin = rec.take_finished();
+  ASSERT_EQ(fin.size(), 1u);
+  EXPECT_TRUE(fin[0].complete) << fin[0].end_reason;
+  EXPECT_EQ(reader(db).capture_info(fin[0].capture_id)->status, "complete");
+}
+
+TEST(Recorder, RingDropsAreChargedToTheRecordingThatLostTheSamples) {
+  TempDb db;
+  store::Store s = store::Store::open(db.path());
+  Recorder rec(&s, defaults());
+  feed(rec, 0, 100, 0);
+  feed(rec, 100, 150, 1);
+  feed(rec, 162, 200, 1);  // 12 of recording 1 lost
+  feed(rec, 200, 300, 0);
+  feed(rec, 300, 400, 2);  // untouched
+  feed(rec, 400, 450, 0);
+  feed(rec, 455, 500, 3);  // lost at its very start: 5 that may have been its own
+  feed(rec, 500, 510, 0);
+  rec.close();
+  drain(rec);
+  const auto fin = rec.take_finished();
+  ASSERT_EQ(fin.size(), 3u);
+  EXPECT_EQ(fin[0].end_reason, "ring dropped 12 samples");
+  EXPECT_EQ(fin[0].samples, 88);
+  EXPECT_TRUE(fin[1].complete) << fin[1].end_reason;
+  EXPECT_EQ(fin[2].end_reason, "ring dropped up to 5 samples");
+  auto r = reader(db);
+  EXPECT_EQ(r.capture_info(fin[0].capture_id)->end_reason, "ring dropped 12 samples");
+  EXPECT_EQ(r.capture_info(fin[1].capture_id)->status, "complete");
+  EXPECT_EQ(r.capture_info(fin[2].capture_id)->status, "incomplete");
+}
+
+TEST(Recorder, KeepsEverySampleWhileAnotherConnectionHoldsTheWriteLock) {
+  TempDb db;
+  store::Store s = store::Store::open(db.path());
+  Recorder rec(&s, defaults());
+  auto other = store::sqlite::Connection::open(db.path());
+  other.exec("BEGIN IMMEDIATE");  // e.g. an import's transaction
+  feed(rec, 0, 100, 0);
+  feed(rec, 100, 20100, 1);
+  store::BiometricSample b{7, 1.5, 1e-6, 2e-6, 3e-6};  // monotonic 1.5 s = t 0.5 s
+  rec.add_biometrics(b);
+  feed(rec, 20100, 20200, 0);
+  for (int i = 0; i < 5; ++i) rec.pump();
+  const RecorderStats busy = rec.stats();
+  EXPECT_EQ(busy.buffered, 20000u);
+  EXPECT_GT(busy.retries, 0u);
+  EXPECT_FALSE(rec.idle());
+  EXPECT_TRUE(rec.take_finished().empty());
+  EXPECT_FALSE(rec.safe_state_needed());
+  EXPECT_TRUE(reader(db).list_captures().empty());
+
+  other.exec("COMMIT");
+  rec.close();
+  drain(rec);
+  const auto fin = rec.take_finished();
+  ASSERT_EQ(fin.size(), 1u);
+  EXPECT_TRUE(fin[0].complete) << fin[0].end_reason;
+  EXPECT_EQ(fin[0].samples, 20000);
+  auto r = reader(db);
+  const auto info = r.capture_info(fin[0].capture_id);
+  EXPECT_EQ(info->status, "complete");
+  EXPECT_EQ(info->sample_count, 20000);
+  const auto c = r.load_samples(fin[0].capture_id);
+  ASSERT_EQ(c.size(), 20000u);
+  for (std::size_t i = 0; i < c.size(); ++i) ASSERT_EQ(c.t[i], static_cast<double>(i + 100) * 1e-4);
+  const auto bio = r.load_biometrics(fin[0].capture_id);
+  ASSERT_EQ(bio.size(), 1u);
+  EXPECT_NEAR(bio[0].t, 0.5, 1e-9);
+  const RecorderStats after = rec.stats();
+  EXPECT_EQ(after.buffered, 0u);
+  EXPECT_EQ(after.max_buffered, 20000u);
+  EXPECT_EQ(after.failed, 0u);
+}
+
+TEST(Recorder, ARecordingThatOutgrowsItsBufferIsCutAndAsksForTheSafeState) {
+  TempDb db;
+  store::Store s = store::Store::open(db.path());
+  RecorderOptions options;
+  options.max_buffered = 1000;
+  Recorder rec(&s, defaults(), options);
+  EXPECT_EQ(rec.stats().capacity, 1000u);
+  auto other = store::sqlite::Connection::open(db.path());
+  other.exec("BEGIN IMMEDIATE");
+  feed(rec, 0, 900, 1);
+  EXPECT_FALSE(rec.safe_state_needed());
+  feed(rec, 900, 1500, 1);
+  EXPECT_TRUE(rec.safe_state_needed());
+  EXPECT_FALSE(rec.safe_state_needed());  // once per recording
+  EXPECT_EQ(rec.stats().buffered, 1000u);
+  EXPECT_EQ(rec.stats().failed, 1u);
+  feed(rec, 1500, 1600, 1, kFaultRecording);  // the loop stops it a little later
+  feed(rec, 1600, 1700, 0, kFaultRecording);
+  other.exec("COMMIT");
+  rec.close();
+  drain(rec);
+  const auto fin = rec.take_finished();
+  ASSERT_EQ(fin.size(), 1u);
+  EXPECT_FALSE(fin[0].complete);
+  EXPECT_THAT(fin[0].end_reason, StartsWith("store busy"));
+  EXPECT_EQ(fin[0].samples, 1000);
+  const auto info = reader(db).capture_info(fin[0].capture_id);
+  EXPECT_EQ(info->status, "incomplete");
+  EXPECT_EQ(info->end_reason, fin[0].end_reason);
+  EXPECT_EQ(info->sample_count, 1000);
+}
+
+TEST(Recorder, AStoreErrorOtherThanBusyCutsTheRecordingAndAsksForTheSafeState) {
+  TempDb db;
+  store::Store s = store::Store::open(db.path());
+  Recorder rec(&s, defaults());
+  s.connection().exec(
+      "CREATE TEMP TRIGGER disk_on_fire BEFORE INSERT ON samples WHEN NEW.idx = 2500"
+      " BEGIN SELECT RAISE(ABORT, 'disk on fire'); END");
+  feed(rec, 0, 5000, 1);
+  EXPECT_TRUE(rec.safe_state_needed());
+  EXPECT_EQ(rec.stats().buffered, 0u);  // nothing more of it is kept
+  feed(rec, 5000, 5100, 0);
+  s.connection().exec("DROP TRIGGER disk_on_fire");
+  feed(rec, 5100, 5300, 2);  // the recorder goes on with the next one
+  feed(rec, 5300, 5310, 0);
+  rec.close();
+  drain(rec);
+  const auto fin = rec.take_finished();
+  ASSERT_EQ(fin.size(), 2u);
+  EXPECT_FALSE(fin[0].complete);
+  EXPECT_THAT(fin[0].end_reason, StartsWith("store error: "));
+  EXPECT_THAT(fin[0].end_reason, HasSubstr("disk on fire"));
+  EXPECT_EQ(fin[0].samples, 2000);  // the batch committed before the failure
+  EXPECT_TRUE(fin[1].complete) << fin[1].end_reason;
+  auto r = reader(db);
+  const auto cut = r.capture_info(fin[0].capture_id);
+  EXPECT_EQ(cut->status, "incomplete");
+  EXPECT_EQ(cut->sample_count, 2000);
+  EXPECT_THAT(cut->end_reason.value_or(""), HasSubstr("disk on fire"));
+  EXPECT_EQ(r.capture_info(fin[1].capture_id)->sample_count, 200);
+}
+
+// hapticd exiting while another writer still holds the store: what is
+// buffered is given up (the daemon waits first), and the recording says why.
+TEST(Recorder, GivingUpAtShutdownReportsTheRecordingIncompleteAndEmptiesTheBuffer) {
+  TempDb db;
+  store::Store s = store::Store::open(db.path());
+  Recorder rec(&s, defaults());
+  auto other = store::sqlite::Connection::open(db.path());
+  other.exec("BEGIN IMMEDIATE");
+  feed(rec, 0, 3000, 1);
+  rec.close();
+  rec.pump();
+  EXPECT_FALSE(rec.idle());
+  rec.abandon_all("store busy at shutdown");
+  EXPECT_TRUE(rec.idle());
+  EXPECT_EQ(rec.stats().buffered, 0u);
+  const auto fin = rec.take_finished();
+  ASSERT_EQ(fin.size(), 1u);
+  EXPECT_FALSE(fin[0].complete);
+  EXPECT_EQ(fin[0].end_reason, "store busy at shutdown");
+  EXPECT_EQ(fin[0].capture_id, 0);  // its row was never written
+  other.exec("COMMIT");
+  EXPECT_TRUE(reader(db).list_captures().empty());
+}
+
+}  // namespace
+}  // namespace knoblab::hapticd
