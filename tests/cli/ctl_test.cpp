@@ -71,6 +71,7 @@ class Hapticd {
            });
   }
   std::string socket() const { return (dir_ / "h.sock").string(); }
+  std::string db() const { return (dir_ / "lab.sqlite").string(); }
   std::string log() const { return read_file(dir_ / "hapticd.out") + read_file(dir_ / "hapticd.err"); }
 
  private:
@@ -279,6 +280,49 @@ TEST(Ctl, WatchPrintsEventsAsJsonLinesAfterAStateChange) {
     EXPECT_TRUE(j["data"].contains("mode")) << line;
   }
   EXPECT_EQ(json::parse(lines[0])["data"]["mode"], "render") << lines[0];
+}
+
+TEST(Ctl, ATrialIsAnnouncedWhenItStartsAndStopsAndStoredWithItsMetadata) {
+  Hapticd d;
+  ASSERT_TRUE(d.ready()) << d.log();
+  Watcher w(d.socket(), {"--events", "trial,stats", "--count", "3"});
+  ASSERT_TRUE(w.subscribed()) << w.err();
+  ASSERT_EQ(ctl(d.socket(), {"start_trial", "study=S1", "participant=7", "condition=detents-12"}).exit_code, 0);
+  const RunResult again = ctl(d.socket(), {"start_trial", "study=S1", "participant=7", "condition=x"});
+  EXPECT_EQ(again.exit_code, 1) << again.err;  // one recording at a time
+  std::this_thread::sleep_for(300ms);
+  ASSERT_EQ(ctl(d.socket(), {"stop_trial"}).exit_code, 0);
+  ASSERT_TRUE(eventually([&] { return w.out().find("\"stopped\"") != std::string::npos; })) << w.out() << d.log();
+  EXPECT_EQ(ctl(d.socket(), {"stop_trial"}).exit_code, 1);  // none running now
+  // Loop statistics arrive once a second.
+  EXPECT_TRUE(eventually([&] { return w.out().find("\"stats\"") != std::string::npos; })) << w.out();
+  w.signal(SIGTERM);
+  w.finish();
+  json started, stopped;
+  bool stats = false;
+  for (const auto& line : lines_of(w.out())) {
+    const json j = json::parse(line, nullptr, false);
+    ASSERT_TRUE(j.is_object()) << line;
+    if (j.value("event", "") == "stats") stats = j["data"].contains("cycles");
+    if (j.value("event", "") != "trial") continue;
+    (j["data"]["state"] == "started" ? started : stopped) = j["data"];
+  }
+  EXPECT_TRUE(stats) << w.out();
+  ASSERT_TRUE(started.is_object()) << w.out();
+  EXPECT_EQ(started["trial"]["study"], "S1");
+  EXPECT_EQ(started["trial"]["participant"], 7);
+  ASSERT_TRUE(stopped.is_object()) << w.out();
+  EXPECT_EQ(stopped["trial"]["condition"], "detents-12");
+  EXPECT_TRUE(stopped.value("complete", false)) << stopped.dump();
+  EXPECT_GT(stopped.value("samples", 0), 100);  // 0.3 s at 1 kHz
+
+  // The store row carries the trial's metadata.
+  const RunResult exported = run_knoblab({"export", std::to_string(stopped.value("capture_id", 0)), "--db",
+                                          d.db(), "--out", d.db() + ".csv"});
+  ASSERT_EQ(exported.exit_code, 0) << exported.err;
+  const std::string csv = read_file(d.db() + ".csv");
+  EXPECT_NE(csv.find("S1"), std::string::npos) << csv.substr(0, 600);
+  EXPECT_NE(csv.find("detents-12"), std::string::npos) << csv.substr(0, 600);
 }
 
 TEST(Ctl, WatchEndsCleanlyOnSigintAndSigterm) {

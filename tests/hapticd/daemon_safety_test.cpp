@@ -144,6 +144,39 @@ TEST(DaemonSafety, RenderParametersBeyondTheDeviceAreRefusedAtTheProtocolWithThe
   EXPECT_TRUE(send(control::Command::load_model, {{"M_acc", 0.0}, {"B_vel", 0.0}, {"A_pos", 0.02}, {"P_pos", 0.1}}).ok);
 }
 
+TEST(DaemonSafety, WhileAFaultIsLatchedRenderAndTrialsAreRefusedWithTheFaultNamed) {
+  auto daq = std::make_unique<capture::SimDaq>(on_a_detent_flank(), 10000.0);
+  const capture::SensorCalibration cal = daq->calibration();
+  Daemon daemon(config_for(cal), std::move(daq), std::make_unique<hal::MemoryLines>(false));
+  ControlHandler handler(daemon, {});
+  rt::LoopResult timing;
+  std::thread loop([&] { timing = daemon.run(); });
+  struct Joined {  // stops the loop however the test leaves
+    Daemon& d;
+    std::thread& t;
+    ~Joined() {
+      d.stop();
+      if (t.joinable()) t.join();
+    }
+  } joined{daemon, loop};
+  CoreCommand safe;
+  safe.kind = CoreCommand::ForceSafe;
+  ASSERT_TRUE(daemon.post(safe));
+  ASSERT_TRUE(eventually([&] { return daemon.core().state().faults != 0; }));
+  for (const auto& [cmd, args] : {std::pair{control::Command::set_mode, nlohmann::json{{"mode", "render"}}},
+                                  std::pair{control::Command::start_trial,
+                                            nlohmann::json{{"study", "S"}, {"participant", 1}, {"condition", "c"}}}}) {
+    control::Request r;
+    r.command = cmd;
+    r.args = args;
+    const control::Reply reply = handler.handle(r);
+    ASSERT_FALSE(reply.ok);
+    EXPECT_EQ(reply.error.code, control::ErrorCode::busy);
+    EXPECT_NE(reply.error.message.find("commanded"), std::string::npos) << reply.error.message;
+  }
+  EXPECT_EQ(daemon.core().state().mode, Mode::Idle);
+}
+
 TEST(DaemonSafety, RenderParamsProblemRefusesNonFiniteAndNegativeValues) {
   const SafetyLimits limits;
   RenderParams p;

@@ -5,6 +5,7 @@
 #include <string_view>
 
 #include "knoblab/hapticd/daemon.hpp"
+#include "knoblab/rt/timing_stats.hpp"
 #include "knoblab/modbus/status_bits.hpp"
 
 namespace knoblab::hapticd {
@@ -62,6 +63,26 @@ json calibration_json(const CalibrationResult& r) {
 
 }  // namespace
 
+// Loop statistics once a second, for a status strip or a log.
+void ControlHandler::publish_stats(control::Server& server) {
+  const auto now = std::chrono::steady_clock::now();
+  if (now < next_stats_) return;
+  next_stats_ = now + std::chrono::seconds(1);
+  const rt::TimingSummary t = rt::summarize(daemon_.stats().read());
+  const RecorderStats r = daemon_.recorder_stats();
+  server.publish({"stats",
+                  {{"cycles", t.cycles},
+                   {"rate_hz", daemon_.config().core.rate_hz},
+                   {"overruns", t.overruns},
+                   {"max_consecutive_overruns", t.max_consecutive_overruns},
+                   {"wakeup_latency_us", {{"p99", static_cast<double>(t.wakeup.p99_ns) * 1e-3},
+                                          {"max", static_cast<double>(t.wakeup.max_ns) * 1e-3}}},
+                   {"cycle_cost_us", {{"p99", static_cast<double>(t.compute.p99_ns) * 1e-3},
+                                      {"max", static_cast<double>(t.compute.max_ns) * 1e-3}}},
+                   {"ring_dropped", daemon_.ring_dropped()},
+                   {"recorder_buffered", r.buffered}}});
+}
+
 json ControlHandler::state_json() const {
   const CoreState s = daemon_.core().state();
   json j;
@@ -72,6 +93,9 @@ json ControlHandler::state_json() const {
   j["rate_hz"] = daemon_.config().core.rate_hz;
   j["modbus"] = modbus::status::describe(daemon_.modbus_status());
   j["ring_dropped"] = daemon_.ring_dropped();
+  const RecorderStats r = daemon_.recorder_stats();
+  j["recorder"] = {{"buffered", r.buffered}, {"max_buffered", r.max_buffered}, {"capacity", r.capacity},
+                   {"retries", r.retries}, {"failed", r.failed}};
   if (const auto cal = daemon_.last_calibration()) j["last_calibration"] = calibration_json(*cal);
   return j;
 }
@@ -142,6 +166,18 @@ Reply ControlHandler::render(const json& a, bool partial) {
   return Reply::success({{"ramp_s", kParamRampSeconds}});
 }
 
+Reply ControlHandler::start_trial(const json& a) {
+  const json trial = {{"study", a.at("study")}, {"participant", a.at("participant")},
+                      {"condition", a.at("condition")}};
+  std::string why;
+  const auto id = daemon_.start_trial(trial, why);
+  if (!id) return Reply::failure(ErrorCode::busy, why);
+  trial_id_ = *id;
+  trial_ = trial;
+  pending_trial_events_.push_back({"trial", {{"state", "started"}, {"trial", trial}}});
+  return Reply::success();
+}
+
 Reply ControlHandler::start_capture(const json& a) {
   capture::CaptureConfig cc;
   if (a.contains("torque_sweep")) {  // open-loop torque chirp (schema: exactly one stimulus)
@@ -168,6 +204,13 @@ Reply ControlHandler::start_capture(const json& a) {
                                          std::llround(a.at("seconds").get<double>() * daemon_.config().core.rate_hz))}});
 }
 
+// The core refuses these too; saying so here tells the client why.
+std::optional<Reply> ControlHandler::refused_while_faulted() const {
+  const std::uint32_t faults = daemon_.core().state().faults;
+  if (faults == 0) return std::nullopt;
+  return Reply::failure(ErrorCode::busy, "a fault is latched (" + fault_list(faults) + "); clear_fault first");
+}
+
 Reply ControlHandler::handle(const control::Request& r) {
   std::lock_guard lock(mutex_);
   using control::Command;
@@ -185,9 +228,9 @@ Reply ControlHandler::handle(const control::Request& r) {
       c.kind = CoreCommand::StopCapture;
       break;
     case Command::start_trial:
-      c.kind = CoreCommand::StartRecording;
-      break;
+      return start_trial(r.args);
     case Command::stop_trial:
+      if (trial_id_ == 0) return Reply::failure(ErrorCode::busy, "no trial is running");
       c.kind = CoreCommand::StopRecording;
       break;
     case Command::clear_fault:
@@ -200,6 +243,8 @@ Reply ControlHandler::handle(const control::Request& r) {
         return Reply::failure(ErrorCode::bad_args, "calibrations start with calibrate", "mode");
       c.kind = CoreCommand::SetMode;
       c.mode = mode == "render" ? Mode::Render : Mode::Idle;
+      if (c.mode == Mode::Render)
+        if (const auto why = refused_while_faulted()) return *why;
       break;
     }
     case Command::calibrate: {
@@ -241,6 +286,20 @@ void ControlHandler::publish_events(control::Server& server, const std::vector<F
     server.publish({"state", state_json()});
   }
   last_mode_ = static_cast<int>(s.mode);
+  for (control::Event& e : pending_trial_events_) server.publish(std::move(e));
+  pending_trial_events_.clear();
+  for (const FinishedRecording& f : finished) {
+    if (f.recording_id == trial_id_ && trial_id_ != 0) {
+      server.publish({"trial", {{"state", "stopped"},
+                                {"trial", trial_},
+                                {"capture_id", f.capture_id},
+                                {"samples", f.samples},
+                                {"complete", f.complete},
+                                {"end_reason", f.end_reason}}});
+      trial_id_ = 0;
+    }
+  }
+  publish_stats(server);
   for (const FinishedRecording& f : finished)
     server.publish({"capture_finished",
                     {{"capture_id", f.capture_id},

@@ -77,7 +77,7 @@ void HapticCore::apply(const CoreCommand& c) {
       capture_ = c.capture;
       capture_left_ = c.capture_cycles;
       if (capture_left_ <= 0) break;
-      begin_recording();
+      begin_recording(c.recording_id);
       mode_ = Mode::Capture;
       break;
     case CoreCommand::StopCapture:
@@ -91,11 +91,11 @@ void HapticCore::apply(const CoreCommand& c) {
       calibration_ = c.calibration;
       calibration_left_ = calibration_.cycles();
       if (calibration_left_ <= 0) break;  // an empty controller: nothing to run
-      begin_recording();                   // recorded like a capture
+      begin_recording(c.recording_id);     // recorded like a capture
       mode_ = Mode::Calibrate;
       break;
     case CoreCommand::StartRecording:
-      if (recording_ == 0 && !faulted) recording_ = next_recording_++;
+      if (recording_ == 0 && !faulted) begin_recording(c.recording_id);
       break;
     case CoreCommand::StopRecording:
       if (!running() && recording_ != 0) stop_recording_pending_ = true;
@@ -110,7 +110,7 @@ void HapticCore::apply(const CoreCommand& c) {
   }
 }
 
-void HapticCore::begin_recording() { recording_ = next_recording_++; }
+void HapticCore::begin_recording(std::uint32_t id) { recording_ = id != 0 ? id : next_recording_++; }
 
 void HapticCore::end_recording(RecordingEnd why, LoopRecord& rec) {
   if (mode_ == Mode::Calibrate) calibration_result_.publish(calibration_.data());

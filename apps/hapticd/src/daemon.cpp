@@ -142,9 +142,10 @@ bool Daemon::start_capture(const capture::CaptureConfig& cc, double seconds, con
                                  {"a", ch.a}, {"b", ch.b}, {"c", torque ? cc.torque_stimulus.amplitude_Nm : cc.stimulus.c},
                                  {"d", ch.d}}.dump();
   info.source = "hapticd";
-  recorder_->describe_next(info);
   CoreCommand c;
   c.kind = CoreCommand::StartCapture;
+  c.recording_id = next_recording_id_.fetch_add(1);
+  recorder_->describe(c.recording_id, info);
   capture::CaptureConfig full = cc;
   full.rate_hz = cfg_.core.rate_hz;
   c.capture = capture::CaptureController(full);
@@ -183,13 +184,41 @@ bool Daemon::start_calibration(const CalibrationConfig& cfg, double& seconds, st
   info.calibration = full.calibration.to_json();
   info.source = "hapticd";
   info.metadata = std::string(R"({"calibration":")") + to_string(full.kind) + "\"}";
-  recorder_->describe_next(info);
+  c.recording_id = next_recording_id_.fetch_add(1);
+  recorder_->describe(c.recording_id, info);
   if (!post(c)) {
     why = "the loop is not taking commands";
     return false;
   }
   seconds = c.calibration.seconds();
   return true;
+}
+
+std::optional<std::uint32_t> Daemon::start_trial(const nlohmann::json& trial, std::string& why) {
+  const CoreState s = core_->state();
+  if (s.faults != 0) {
+    why = "a fault is latched (" + fault_list(s.faults) + "); clear_fault first";
+    return std::nullopt;
+  }
+  if (s.recording_id != 0 || s.mode == Mode::Capture || s.mode == Mode::Calibrate) {
+    why = "a capture, calibration or trial is already recording";
+    return std::nullopt;
+  }
+  store::NewCapture info;
+  info.knob = cfg_.knob;
+  info.rate_hz = cfg_.core.rate_hz;
+  info.calibration = cfg_.core.calibration.to_json();
+  info.source = "hapticd";
+  info.metadata = nlohmann::json{{"trial", trial}}.dump();
+  CoreCommand c;
+  c.kind = CoreCommand::StartRecording;
+  c.recording_id = next_recording_id_.fetch_add(1);
+  recorder_->describe(c.recording_id, info);
+  if (!post(c)) {
+    why = "the loop is not taking commands";
+    return std::nullopt;
+  }
+  return c.recording_id;
 }
 
 std::optional<CalibrationResult> Daemon::last_calibration() const {

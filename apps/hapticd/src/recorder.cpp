@@ -27,9 +27,9 @@ Recorder::Recorder(store::Store* store, store::NewCapture defaults, RecorderOpti
   if (store_) store_->set_busy_timeout(options_.busy_timeout_ms);
 }
 
-void Recorder::describe_next(const store::NewCapture& info) {
-  std::lock_guard lock(next_mutex_);
-  next_ = info;
+void Recorder::describe(std::uint32_t recording_id, const store::NewCapture& info) {
+  std::lock_guard lock(described_mutex_);
+  described_[recording_id] = info;
 }
 
 void Recorder::set_max_buffered(std::size_t samples) {
@@ -45,9 +45,11 @@ void Recorder::start(const LoopRecord& r) {
   Recording rec;
   rec.id = r.recording_id;
   {
-    std::lock_guard lock(next_mutex_);
-    rec.info = next_.value_or(defaults_);
-    next_.reset();
+    std::lock_guard lock(described_mutex_);
+    const auto it = described_.find(rec.id);
+    rec.info = it != described_.end() ? it->second : defaults_;
+    // Ids only grow: anything described up to this one is used or never ran.
+    described_.erase(described_.begin(), described_.upper_bound(rec.id));
   }
   rec.info.has_command = true;
   if (rec.info.source.empty()) rec.info.source = "hapticd";

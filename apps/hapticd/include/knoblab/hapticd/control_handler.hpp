@@ -3,6 +3,7 @@
 // answer from state the loop publishes. Runs on the server's thread.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <mutex>
 #include <optional>
@@ -47,12 +48,19 @@ class ControlHandler final : public control::CommandHandler {
  private:
   control::Reply render(const nlohmann::json& args, bool partial);
   control::Reply start_capture(const nlohmann::json& args);
+  control::Reply start_trial(const nlohmann::json& args);
+  void publish_stats(control::Server& server);
   nlohmann::json state_json() const;
+  std::optional<control::Reply> refused_while_faulted() const;
 
   Daemon& daemon_;
   std::mutex mutex_;         // handle() and publish_events() run on different threads
   RenderParams params_{};    // the last model sent to the loop
   std::uint32_t last_faults_ = 0;
+  std::uint32_t trial_id_ = 0;  // the running trial's recording (0: none)
+  nlohmann::json trial_;        // its study, participant, condition
+  std::vector<control::Event> pending_trial_events_;  // published by the writer thread
+  std::chrono::steady_clock::time_point next_stats_{};
   int last_mode_ = -1;
 };
 

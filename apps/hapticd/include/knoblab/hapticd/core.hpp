@@ -66,6 +66,10 @@ struct CoreCommand {
   // last_calibration() holds what it accumulated.
   CalibrationController calibration{};
   std::uint32_t faults = kFaultCommanded;  // ForceSafe: why (e.g. kFaultWatchdog)
+  // StartCapture / StartCalibration / StartRecording: the recording's id, so
+  // the sender can describe it to the recorder first (0: the core numbers
+  // it; a sender either always chooses ids, increasing, or never does).
+  std::uint32_t recording_id = 0;
 };
 
 // How a recording ended, on its last record (none on every other record).
@@ -128,7 +132,7 @@ class HapticCore {
  private:
   void apply(const CoreCommand& c);
   bool running() const { return mode_ == Mode::Capture || mode_ == Mode::Calibrate; }
-  void begin_recording();
+  void begin_recording(std::uint32_t id);
   // Ends the open recording (and a run) on this cycle's record.
   void end_recording(RecordingEnd why, LoopRecord& rec);
   void measure_idle(const capture::SensorReading& in, capture::Sample& s);

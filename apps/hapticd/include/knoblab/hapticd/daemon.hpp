@@ -13,6 +13,8 @@
 #include <string>
 #include <thread>
 
+#include <nlohmann/json.hpp>
+
 #include "knoblab/capture/daq.hpp"
 #include "knoblab/hal/digital_lines.hpp"
 #include "knoblab/hapticd/core.hpp"
@@ -74,6 +76,10 @@ class Daemon {
   // Returns false with a reason when it can't; on success `seconds` = how
   // long the run takes.
   bool start_calibration(const CalibrationConfig& cfg, double& seconds, std::string& why);
+  // Starts a study trial: a recording of whatever the mode does until
+  // stop_trial, stored with `trial` (study, participant, condition) in its
+  // metadata. Returns its recording id, or nullopt with a reason.
+  std::optional<std::uint32_t> start_trial(const nlohmann::json& trial, std::string& why);
   // The most recently ended calibration, fitted (nullopt: none has ended).
   std::optional<CalibrationResult> last_calibration() const;
   // Each ended calibration once (for the event publisher): nullopt when no
@@ -110,6 +116,9 @@ class Daemon {
   std::vector<FinishedRecording> finished_;
   std::mutex command_mutex_;  // post() from several non-RT threads
   std::atomic<std::uint64_t> calibrations_taken_{0};
+  // Recording ids, chosen here so each is described to the recorder before
+  // the loop starts it.
+  std::atomic<std::uint32_t> next_recording_id_{1};
 };
 
 }  // namespace knoblab::hapticd

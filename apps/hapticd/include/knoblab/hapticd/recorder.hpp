@@ -15,6 +15,7 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <deque>
 #include <mutex>
 #include <optional>
@@ -61,9 +62,10 @@ class Recorder {
   // store, sets that connection's busy timeout (options.busy_timeout_ms).
   Recorder(store::Store* store, store::NewCapture defaults, RecorderOptions options = {});
 
-  // How the next recording is described in the store (set before starting
-  // it; any thread).
-  void describe_next(const store::NewCapture& info);
+  // How recording `recording_id` is described in the store (set before the
+  // loop starts it; any thread). A description whose recording never starts
+  // (the loop refused it) is forgotten once a later recording starts.
+  void describe(std::uint32_t recording_id, const store::NewCapture& info);
   void set_max_buffered(std::size_t samples);
 
   // One record from the ring, in order of LoopRecord::seq: a gap in seq is
@@ -127,8 +129,8 @@ class Recorder {
   store::Store* store_;
   store::NewCapture defaults_;
   RecorderOptions options_;
-  std::mutex next_mutex_;  // describe_next() comes from control threads
-  std::optional<store::NewCapture> next_;
+  std::mutex described_mutex_;  // describe() comes from control threads
+  std::map<std::uint32_t, store::NewCapture> described_;
   std::deque<Recording> recordings_;
   std::uint32_t current_ = 0;      // recording_id of the newest record taken
   std::uint64_t next_seq_ = 0;     // seq the next record should have
