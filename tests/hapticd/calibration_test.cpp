@@ -16,6 +16,7 @@
 #include "knoblab/capture/sim_daq.hpp"
 #include "knoblab/hapticd/calibration_controller.hpp"
 #include "knoblab/hapticd/core.hpp"
+#include "knoblab/hapticd/control_handler.hpp"
 #include "knoblab/hapticd/daemon.hpp"
 #include "knoblab/hal/memory_lines.hpp"
 #include "knoblab/store/store.hpp"
@@ -317,6 +318,38 @@ TEST(CalibrationDaemon, StartCalibrationRunsRecordsAndPublishesItsResultOnce) {
   ASSERT_EQ(caps.size(), 1u);
   EXPECT_NE(caps[0].metadata.find("spatial"), std::string::npos) << caps[0].metadata;
   std::filesystem::remove_all(dir);
+}
+
+TEST(CalibrationDaemon, CalibrateTakesItsDurationsFromTheRequest) {
+  auto daq = std::make_unique<capture::SimDaq>(free_shaft(), 10000.0);
+  DaemonConfig cfg;
+  cfg.core.rate_hz = 10000.0;
+  cfg.core.calibration = daq->calibration();
+  shared_host::configure(cfg);
+  Daemon d(cfg, std::move(daq), std::make_unique<hal::MemoryLines>(false));
+  ControlHandler handler(d, {});
+  control::Request r;
+  r.command = control::Command::calibrate;
+  r.args = {{"kind", "spatial"}, {"sweep_seconds", 0.7}, {"pid", {{"Kp", 150.0}}}};
+  control::Reply reply = handler.handle(r);
+  ASSERT_TRUE(reply.ok) << reply.error.message;
+  EXPECT_DOUBLE_EQ(reply.result["seconds"].get<double>(), 0.7);
+  EXPECT_EQ(reply.result["samples"], 7000);
+
+  // A second daemon: the first one's loop never ran, so its run is still queued.
+  Daemon d2(cfg, std::make_unique<capture::SimDaq>(free_shaft(), 10000.0), std::make_unique<hal::MemoryLines>(false));
+  ControlHandler handler2(d2, {});
+  r.args = {{"kind", "gravity"}, {"gravity_seconds", 4.0}, {"gravity_ramp_seconds", 0.25}};
+  reply = handler2.handle(r);
+  ASSERT_TRUE(reply.ok) << reply.error.message;
+  CalibrationConfig expected;
+  expected.kind = CalibrationKind::Gravity;
+  expected.rate_hz = 10000.0;
+  expected.gravity_seconds = 4.0;
+  expected.gravity_ramp_seconds = 0.25;
+  EXPECT_DOUBLE_EQ(reply.result["seconds"].get<double>(), CalibrationController(expected).seconds());
+  expected.gravity_seconds = CalibrationConfig{}.gravity_seconds;
+  EXPECT_LT(reply.result["seconds"].get<double>(), CalibrationController(expected).seconds());
 }
 
 }  // namespace

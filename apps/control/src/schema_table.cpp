@@ -125,7 +125,13 @@ constexpr std::array kTrialArgs = {
 // calibrate, set_mode
 constexpr std::array<std::string_view, 4> kCalibrationKinds = {"spatial", "torque", "accel_gain",
                                                                "gravity"};
-constexpr std::array kCalibrateArgs = {choice("kind", kRequired, kCalibrationKinds, "what to calibrate")};
+constexpr std::array kCalibrateArgs = {
+    choice("kind", kRequired, kCalibrationKinds, "what to calibrate"),
+    number("sweep_seconds", kOptional, 0.1, 600, "s", "spatial, torque, accel_gain: sweep length (default 5, Table 3)"),
+    number("gravity_seconds", kOptional, 1, 600, "s", "gravity: one revolution each way in this time (default 16)"),
+    number("gravity_ramp_seconds", kOptional, 0, 10, "s", "gravity: velocity ramps, not fitted (default 0.5)"),
+    object("pid", kOptional, &kPid, "position controller gains (Eq. 4)"),
+};
 constexpr std::array<std::string_view, 4> kModes = {"idle", "render", "capture", "calibrate"};
 constexpr std::array kModeArgs = {choice("mode", kRequired, kModes, "daemon mode")};
 

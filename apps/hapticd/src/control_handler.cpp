@@ -252,6 +252,15 @@ Reply ControlHandler::handle(const control::Request& r) {
       if (!kind) return Reply::failure(ErrorCode::bad_args, "unknown calibration kind", "kind");
       CalibrationConfig cc;  // thesis durations: 5 s sweeps, ~16 s a revolution each way
       cc.kind = *kind;
+      cc.sweep_seconds = get(r.args, "sweep_seconds", cc.sweep_seconds);
+      cc.gravity_seconds = get(r.args, "gravity_seconds", cc.gravity_seconds);
+      cc.gravity_ramp_seconds = get(r.args, "gravity_ramp_seconds", cc.gravity_ramp_seconds);
+      if (r.args.contains("pid")) {
+        const json& pid = r.args.at("pid");
+        cc.pid.Kp = get(pid, "Kp", cc.pid.Kp);
+        cc.pid.Ki = get(pid, "Ki", cc.pid.Ki);
+        cc.pid.Kd = get(pid, "Kd", cc.pid.Kd);
+      }
       double seconds = 0.0;
       std::string why;
       if (!daemon_.start_calibration(cc, seconds, why)) return Reply::failure(ErrorCode::busy, why);
