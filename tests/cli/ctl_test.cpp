@@ -43,9 +43,12 @@ using Clock = std::chrono::steady_clock;
 class Hapticd {
  public:
   explicit Hapticd(std::string telemetry_shm = {}) : telemetry_(std::move(telemetry_shm)) {
+    // This host is not realtime: a run of late cycles must not latch the
+    // overruns fault (it would send the daemon to idle mid-test).
     std::vector<std::string> args = {KNOBLAB_HAPTICD_PATH, "--backend", "sim",    "--knob",
                                      "moderate-detents",   "--rate",    "1000",   "--socket",
-                                     socket(),             "--db",      (dir_ / "lab.sqlite").string()};
+                                     socket(),             "--db",      (dir_ / "lab.sqlite").string(),
+                                     "--max-overruns",     "1000000"};
     if (!telemetry_.empty()) args.insert(args.end(), {"--telemetry", telemetry_});
     pid_ = spawn(args, (dir_ / "hapticd.out").string(), (dir_ / "hapticd.err").string());
   }

@@ -49,6 +49,8 @@ const char* kUsage =
     "  --telemetry NAME     shared-memory telemetry ring, e.g. /knoblab-telemetry\n"
     "  --modbus HOST:PORT   amplifier + biometrics box over Modbus TCP\n"
     "  --cycles N           stop after N cycles\n"
+    "  --max-overruns N     overruns in a row that latch the overruns fault (default 10;\n"
+    "                       raise it only on a host that is not realtime, e.g. for tests)\n"
     "  --model FILE         render model to load at start (knoblab fit --render-model)\n"
     "  --free-run           run cycles back to back (benchmark); renders a model with\n"
     "                       detents, damping and virtual-mass inertia\n"
@@ -167,6 +169,9 @@ Options parse(const std::vector<std::string>& a) {
         e->port = static_cast<std::uint16_t>(std::stoi(hp.substr(colon + 1)));
       }
       o.cfg.modbus = pc;
+    } else if (k == "--max-overruns") {
+      o.cfg.core.limits.max_consecutive_overruns = std::stoi(need(a, i));
+      if (o.cfg.core.limits.max_consecutive_overruns < 1) throw UsageError("--max-overruns must be at least 1");
     } else if (k == "--cycles") {
       o.cfg.loop.max_cycles = std::stoll(need(a, i));
     } else if (k == "--model") {
