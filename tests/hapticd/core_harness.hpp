@@ -49,25 +49,30 @@ class CoreHarness {
     c.render.P_pos = 1.0 / 12.0;
     post(c);
   }
-  void start_capture(std::int64_t cycles) {
+  CoreCommand capture_command(std::int64_t cycles) const {
     CoreCommand c;
     c.kind = CoreCommand::StartCapture;
     capture::CaptureConfig cc;
     cc.rate_hz = kRate;
     c.capture = capture::CaptureController(cc);
     c.capture_cycles = cycles;
-    post(c);
+    return c;
   }
-  void start_calibration(double seconds) {
+  // `seconds`: the sweep's length, or for gravity one revolution's.
+  CoreCommand calibration_command(double seconds, CalibrationKind kind = CalibrationKind::Spatial) const {
     CoreCommand c;
     c.kind = CoreCommand::StartCalibration;
     CalibrationConfig cc;
+    cc.kind = kind;
     cc.rate_hz = kRate;
     cc.calibration = daq_.calibration();
     cc.sweep_seconds = seconds;
+    cc.gravity_seconds = seconds;
     c.calibration = CalibrationController(cc);
-    post(c);
+    return c;
   }
+  void start_capture(std::int64_t cycles) { post(capture_command(cycles)); }
+  void start_calibration(double seconds) { post(calibration_command(seconds)); }
 
   // One cycle as the daemon runs it: read, cycle, write.
   LoopRecord step() {

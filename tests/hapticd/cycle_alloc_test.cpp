@@ -5,103 +5,35 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
-#include <cstdlib>
 #include <memory>
-#include <new>
 
-#include "knoblab/capture/sim_daq.hpp"
-#include "knoblab/hapticd/core.hpp"
-#include "knoblab/sim/presets.hpp"
+#include "alloc_counter.hpp"
+#include "core_harness.hpp"
 
-namespace {
-std::atomic<bool> g_counting{false};
-std::atomic<long> g_allocations{0};
-
-void* counted(std::size_t n) {
-  if (g_counting.load(std::memory_order_relaxed)) g_allocations.fetch_add(1);
-  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
-  throw std::bad_alloc();
-}
-}  // namespace
-
-void* operator new(std::size_t n) { return counted(n); }
-void* operator new[](std::size_t n) { return counted(n); }
-void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
-  if (g_counting.load(std::memory_order_relaxed)) g_allocations.fetch_add(1);
-  return std::malloc(n == 0 ? 1 : n);
-}
-void* operator new[](std::size_t n, const std::nothrow_t& t) noexcept { return operator new(n, t); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+using knoblab::test::g_allocations;
+using knoblab::test::g_counting;
 
 namespace knoblab::hapticd {
 namespace {
 
-constexpr double kRate = 10000.0;
+using testing::CoreHarness;
 
-class Rig {
+// The harness's core and DAQ, with allocations counted inside cycle() only
+// (the harness's own step() keeps a log of records, which allocates).
+class Rig : public CoreHarness {
  public:
-  Rig() : daq_(plant(), kRate), core_(config(daq_)) {}
-
-  // Runs n cycles, counting allocations inside cycle() only.
-  void run(int n, CycleContext ctx = {}) {
+  void run(int n, CycleContext context = {}) {
     for (int i = 0; i < n; ++i) {
       capture::DaqInputs in;
-      ctx.io_ok = daq_.read(in) == capture::IoStatus::ok;
+      context.io_ok = daq().read(in) == capture::IoStatus::ok;
       capture::DaqOutputs out;
       LoopRecord rec;
       g_counting = true;
-      core_.cycle(in, ctx, out, rec);
+      core().cycle(in, context, out, rec);
       g_counting = false;
-      (void)daq_.write(out);
+      (void)daq().write(out);
     }
   }
-  void post(const CoreCommand& c) { ASSERT_TRUE(core_.post(c)); }
-  void command(CoreCommand::Kind kind, Mode mode = Mode::Idle) {
-    CoreCommand c;
-    c.kind = kind;
-    c.mode = mode;
-    post(c);
-  }
-  CoreCommand capture(std::int64_t cycles) const {
-    CoreCommand c;
-    c.kind = CoreCommand::StartCapture;
-    capture::CaptureConfig cc;
-    cc.rate_hz = kRate;
-    c.capture = capture::CaptureController(cc);
-    c.capture_cycles = cycles;
-    return c;
-  }
-  CoreCommand calibration(CalibrationKind kind) const {
-    CoreCommand c;
-    c.kind = CoreCommand::StartCalibration;
-    CalibrationConfig cc;
-    cc.kind = kind;
-    cc.rate_hz = kRate;
-    cc.calibration = daq_.calibration();
-    cc.sweep_seconds = 0.05;
-    cc.gravity_seconds = 2.0;  // a revolution in 2 s: slow enough for the velocity limit
-    c.calibration = CalibrationController(cc);
-    return c;
-  }
-  HapticCore& core() { return core_; }
-
- private:
-  static sim::PlantConfig plant() {
-    sim::PlantConfig p;
-    p.knob = *sim::presets::knob("moderate-detents");
-    return p;
-  }
-  static CoreConfig config(const capture::SimDaq& daq) {
-    CoreConfig c;
-    c.rate_hz = kRate;
-    c.calibration = daq.calibration();
-    return c;
-  }
-  capture::SimDaq daq_;
-  HapticCore core_;
 };
 
 TEST(CycleAllocations, TheCounterSeesAnAllocation) {
@@ -137,9 +69,9 @@ TEST(CycleAllocations, NoModeNoTransitionAndNoCommandAllocatesInTheCycle) {
   rig.command(CoreCommand::StopRecording);
   rig.run(10);
 
-  rig.post(rig.capture(300));  // a capture that runs to its end
+  rig.post(rig.capture_command(300));  // a capture that runs to its end
   rig.run(400);
-  rig.post(rig.capture(100000));  // one stopped by a mode change
+  rig.post(rig.capture_command(100000));  // one stopped by a mode change
   rig.run(100);
   rig.command(CoreCommand::SetMode, Mode::Render);
   rig.run(10);
@@ -148,13 +80,14 @@ TEST(CycleAllocations, NoModeNoTransitionAndNoCommandAllocatesInTheCycle) {
 
   for (CalibrationKind k : {CalibrationKind::Spatial, CalibrationKind::Torque, CalibrationKind::AccelGain,
                             CalibrationKind::Gravity}) {
-    rig.post(rig.calibration(k));
+    // Sweeps of 0.05 s; gravity a revolution in 2 s, slow enough for the velocity limit.
+    rig.post(rig.calibration_command(k == CalibrationKind::Gravity ? 2.0 : 0.05, k));
     rig.run(2000);
   }
   rig.command(CoreCommand::StopCapture);  // gravity is still running: stopped early
   rig.run(10);
 
-  rig.post(rig.capture(100000));  // a fault ends it, then is cleared
+  rig.post(rig.capture_command(100000));  // a fault ends it, then is cleared
   rig.run(50);
   CycleContext estop;
   estop.lines.estop = true;

@@ -12,19 +12,12 @@
 #include "knoblab/sim/presets.hpp"
 #include "knoblab/store/store.hpp"
 #include "shared_host.hpp"
+#include "temp_db.hpp"
 
 namespace knoblab::hapticd {
 namespace {
 
-struct TempDb {
-  std::filesystem::path dir;
-  TempDb() {
-    std::string tmpl = "/tmp/knoblab-daemon-XXXXXX";
-    dir = mkdtemp(tmpl.data());
-  }
-  ~TempDb() { std::filesystem::remove_all(dir); }
-  std::filesystem::path path() const { return dir / "lab.sqlite"; }
-};
+using testing::TempDb;
 
 struct Rig {
   hal::MemoryLines* lines = nullptr;  // owned by the daemon

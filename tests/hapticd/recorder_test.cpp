@@ -11,21 +11,15 @@
 #include "knoblab/hapticd/recorder.hpp"
 #include "knoblab/store/store.hpp"
 
+#include "temp_db.hpp"
+
 namespace knoblab::hapticd {
 namespace {
 
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
-struct TempDb {
-  std::filesystem::path dir;
-  TempDb() {
-    std::string tmpl = "/tmp/knoblab-recorder-XXXXXX";
-    dir = mkdtemp(tmpl.data());
-  }
-  ~TempDb() { std::filesystem::remove_all(dir); }
-  std::filesystem::path path() const { return dir / "lab.sqlite"; }
-};
+using testing::TempDb;
 
 store::NewCapture defaults() {
   store::NewCapture d;
@@ -73,7 +67,7 @@ store::Store reader(const TempDb& db) {
 }
 
 TEST(Recorder, ARecordingDuringWhichAFaultLatchedIsStoredIncompleteWithTheFault) {
-  TempDb db;
+  TempDb db{"recorder"};
   store::Store s = store::Store::open(db.path());
   Recorder rec(&s, defaults());
   feed(rec, 0, 100, 0);
@@ -105,7 +99,7 @@ TEST(Recorder, ARecordingDuringWhichAFaultLatchedIsStoredIncompleteWithTheFault)
 }
 
 TEST(Recorder, ARingDropWhileNotRecordingDoesNotMarkTheNextRecordingIncomplete) {
-  TempDb db;
+  TempDb db{"recorder"};
   store::Store s = store::Store::open(db.path());
   Recorder rec(&s, defaults());
   feed(rec, 0, 50, 0);
@@ -121,7 +115,7 @@ TEST(Recorder, ARingDropWhileNotRecordingDoesNotMarkTheNextRecordingIncomplete) 
 }
 
 TEST(Recorder, RingDropsAreChargedToTheRecordingThatLostTheSamples) {
-  TempDb db;
+  TempDb db{"recorder"};
   store::Store s = store::Store::open(db.path());
   Recorder rec(&s, defaults());
   feed(rec, 0, 100, 0);
@@ -147,7 +141,7 @@ TEST(Recorder, RingDropsAreChargedToTheRecordingThatLostTheSamples) {
 }
 
 TEST(Recorder, KeepsEverySampleWhileAnotherConnectionHoldsTheWriteLock) {
-  TempDb db;
+  TempDb db{"recorder"};
   store::Store s = store::Store::open(db.path());
   Recorder rec(&s, defaults());
   auto other = store::sqlite::Connection::open(db.path());
@@ -190,7 +184,7 @@ TEST(Recorder, KeepsEverySampleWhileAnotherConnectionHoldsTheWriteLock) {
 }
 
 TEST(Recorder, ARecordingThatOutgrowsItsBufferIsCutAndAsksForTheSafeState) {
-  TempDb db;
+  TempDb db{"recorder"};
   store::Store s = store::Store::open(db.path());
   RecorderOptions options;
   options.max_buffered = 1000;
@@ -222,7 +216,7 @@ TEST(Recorder, ARecordingThatOutgrowsItsBufferIsCutAndAsksForTheSafeState) {
 }
 
 TEST(Recorder, AStoreErrorOtherThanBusyCutsTheRecordingAndAsksForTheSafeState) {
-  TempDb db;
+  TempDb db{"recorder"};
   store::Store s = store::Store::open(db.path());
   Recorder rec(&s, defaults());
   s.connection().exec(
@@ -255,7 +249,7 @@ TEST(Recorder, AStoreErrorOtherThanBusyCutsTheRecordingAndAsksForTheSafeState) {
 // hapticd exiting while another writer still holds the store: what is
 // buffered is given up (the daemon waits first), and the recording says why.
 TEST(Recorder, GivingUpAtShutdownReportsTheRecordingIncompleteAndEmptiesTheBuffer) {
-  TempDb db;
+  TempDb db{"recorder"};
   store::Store s = store::Store::open(db.path());
   Recorder rec(&s, defaults());
   auto other = store::sqlite::Connection::open(db.path());

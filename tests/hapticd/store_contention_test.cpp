@@ -18,6 +18,7 @@
 #include "knoblab/sim/presets.hpp"
 #include "knoblab/store/store.hpp"
 #include "shared_host.hpp"
+#include "temp_db.hpp"
 
 namespace knoblab::hapticd {
 namespace {
@@ -25,15 +26,7 @@ namespace {
 using ::testing::StartsWith;
 using Clock = std::chrono::steady_clock;
 
-struct TempDb {
-  std::filesystem::path dir;
-  TempDb() {
-    std::string tmpl = "/tmp/knoblab-contention-XXXXXX";
-    dir = mkdtemp(tmpl.data());
-  }
-  ~TempDb() { std::filesystem::remove_all(dir); }
-  std::filesystem::path path() const { return dir / "lab.sqlite"; }
-};
+using testing::TempDb;
 
 // The daemon at 10 kHz on the sim backend, its loop on a thread.
 struct Rig {
@@ -98,7 +91,7 @@ void print_stats(const char* what, const RecorderStats& s) {
 // draining the ring, the recorder keeps the samples, and all of them are
 // stored once the lock is gone.
 TEST(DaemonStore, EverySampleIsKeptWhileAnotherWriterHoldsTheStoreLongerThanTheBusyTimeout) {
-  TempDb db;
+  TempDb db{"contention"};
   { store::Store::open(db.path()); }
   std::vector<FinishedRecording> f;
   RecorderStats stats;
@@ -139,7 +132,7 @@ TEST(DaemonStore, EverySampleIsKeptWhileAnotherWriterHoldsTheStoreLongerThanTheB
 // stopped, the motor made safe (fault 'recording'), and what was held is
 // stored marked incomplete with the reason.
 TEST(DaemonStore, ACaptureTheStoreCannotTakeIsStoppedAndTheMotorMadeSafe) {
-  TempDb db;
+  TempDb db{"contention"};
   { store::Store::open(db.path()); }
   std::vector<FinishedRecording> f;
   {
@@ -179,7 +172,7 @@ TEST(DaemonStore, ACaptureTheStoreCannotTakeIsStoppedAndTheMotorMadeSafe) {
 TEST(DaemonStore, ALargeImportBesideACaptureLosesNoSampleAndListingAnswersThroughout) {
   constexpr std::size_t kRows = 200'000;
   constexpr double kSeconds = 5.0;
-  TempDb db;
+  TempDb db{"contention"};
   {
     interchange::Capture big;
     big.metadata = {{"knob", "imported"}};

@@ -24,20 +24,7 @@ using ::testing::HasSubstr;
 
 namespace {
 
-ki::Capture synthetic(std::size_t n) {
-  ki::Capture c;
-  c.has_command = true;
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto s = ks::test::sample_at(static_cast<std::int64_t>(i));
-    c.t.push_back(s.t);
-    c.theta.push_back(s.theta);
-    c.omega.push_back(s.omega);
-    c.alpha.push_back(s.alpha);
-    c.torque.push_back(s.torque);
-    c.command.push_back(s.command);
-  }
-  return c;
-}
+ki::Capture synthetic(std::size_t n) { return ks::test::synthetic_capture(n); }
 
 // A store holding one complete capture and one fit.
 void populate(const std::filesystem::path& path) {

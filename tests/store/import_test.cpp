@@ -20,18 +20,8 @@ using ::testing::HasSubstr;
 namespace {
 
 ki::Capture synthetic(std::size_t n, bool command) {
-  ki::Capture c;
+  ki::Capture c = ks::test::synthetic_capture(n, command);
   c.metadata = {{"knob", "volume"}, {"operator", "kh \"the\" tester"}, {"", "free comment"}};
-  c.has_command = command;
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto s = ks::test::sample_at(static_cast<std::int64_t>(i));
-    c.t.push_back(s.t);
-    c.theta.push_back(s.theta);
-    c.omega.push_back(s.omega);
-    c.alpha.push_back(s.alpha);
-    c.torque.push_back(s.torque);
-    if (command) c.command.push_back(s.command);
-  }
   return c;
 }
 

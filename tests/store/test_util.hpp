@@ -14,6 +14,7 @@
 #include <functional>
 #include <string>
 
+#include "knoblab/interchange/capture.hpp"
 #include "knoblab/store/sqlite.hpp"
 #include "knoblab/store/store.hpp"
 #include "knoblab/store/types.hpp"
@@ -80,6 +81,22 @@ inline Sample sample_at(std::int64_t idx) {
   // (No -0.0 anywhere: sqlite cannot keep its sign.)
   return {i * 1e-4, std::sin(i * 1e-3), 0.25 + i * 0.5, -0.5 - i * 1e-3, 1.0 / (i + 1.0),
           static_cast<double>(idx % 7) - 3.0};
+}
+
+// n samples of sample_at as an interchange capture (command column or not).
+inline interchange::Capture synthetic_capture(std::size_t n, bool command = true) {
+  interchange::Capture c;
+  c.has_command = command;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Sample s = sample_at(static_cast<std::int64_t>(i));
+    c.t.push_back(s.t);
+    c.theta.push_back(s.theta);
+    c.omega.push_back(s.omega);
+    c.alpha.push_back(s.alpha);
+    c.torque.push_back(s.torque);
+    if (command) c.command.push_back(s.command);
+  }
+  return c;
 }
 
 // Row counts and a hash of every value of every table (and the schema).

@@ -101,6 +101,17 @@ std::pair<std::string_view, std::string_view> split(std::string_view s, char at)
   return {s.substr(0, i), s.substr(i + 1)};
 }
 
+// The optional ":unit" and "@seconds" of exception= and slow=; the problem,
+// or nullptr when both (or neither) are good.
+const char* parse_unit_and_time(std::string_view unit, std::string_view when, FaultAction& a) {
+  if (!unit.empty() && !parse_target(unit, a)) return "unit must be amp, bio, all, 1 or 2";
+  if (when.empty()) return nullptr;
+  const auto at = parse_seconds(when);
+  if (!at) return "expected seconds after '@'";
+  a.at_seconds = *at;
+  return nullptr;
+}
+
 }  // namespace
 
 std::optional<FaultAction> parse_fault(std::string_view spec, std::string* error) {
@@ -132,12 +143,7 @@ std::optional<FaultAction> parse_fault(std::string_view spec, std::string* error
     const auto c = parse_exception_code(code);
     if (!c) return fail("unknown exception code '" + std::string(code) + "'");
     a.exception_code = *c;
-    if (!unit.empty() && !parse_target(unit, a)) return fail("unit must be amp, bio, all, 1 or 2");
-    if (!when.empty()) {
-      const auto at = parse_seconds(when);
-      if (!at) return fail("expected seconds after '@'");
-      a.at_seconds = *at;
-    }
+    if (const char* why = parse_unit_and_time(unit, when, a)) return fail(why);
     return a;
   }
   if (key == "slow") {
@@ -147,12 +153,7 @@ std::optional<FaultAction> parse_fault(std::string_view spec, std::string* error
     const auto ms = parse_number(delay);
     if (!ms || *ms < 1 || *ms > 65535) return fail("reply delay must be 1..65535 ms");
     a.reply_delay = std::chrono::milliseconds(*ms);
-    if (!unit.empty() && !parse_target(unit, a)) return fail("unit must be amp, bio, all, 1 or 2");
-    if (!when.empty()) {
-      const auto at = parse_seconds(when);
-      if (!at) return fail("expected seconds after '@'");
-      a.at_seconds = *at;
-    }
+    if (const char* why = parse_unit_and_time(unit, when, a)) return fail(why);
     return a;
   }
   if (key == "hang-after") {
