@@ -6,7 +6,7 @@
 //   knoblab-discrepancy-bench [--quick] [--seeds N] [--effect ID] [--json FILE] [--check]
 //
 // --effect runs only that effect's cases (and the clean knobs that size them).
-// --check exits 2 when a floor of issue 5's acceptance 1 is missed (named
+// --check exits 2 when a floor of the discovery's acceptance is missed (named
 // right ≥ 90 %, clean cases without finding ≥ 90 %, held-out RMS down ≥ 20 %
 // whenever a finding is reported); it never gates on time.
 #include <algorithm>

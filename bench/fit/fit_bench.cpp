@@ -1,5 +1,5 @@
 // knoblab-fit-bench: knoblab's Eq. 6 fit against scipy.optimize.least_squares
-// on the same data and model (issue 4's acceptance point).
+// on the same data and model (the fit's speed claim).
 //
 //   knoblab-fit-bench [--samples N] [--seed S] [--repeats R] [--json FILE]
 //                     [--csv FILE] [--no-peer] [--breakdown]

@@ -1,5 +1,5 @@
 // knoblab demo end to end: the five thesis knobs captured, fitted, and
-// discrepancy discovery on each (issue 5): four with nothing missing, the
+// discrepancy discovery on each: four with nothing missing, the
 // non-sine knob with its detent shape and its backlash named.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// The fit's JSON: the names outside tools read (issue 4, docs/fit.md).
+// The fit's JSON: the names outside tools read (docs/fit.md).
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>

@@ -1,4 +1,4 @@
-// The discrepancy JSON (names fixed by issue 5; docs/discrepancy.md), and
+// The discrepancy JSON (names fixed in docs/discrepancy.md), and
 // the sentence that puts its base and final held-out RMS on the same rows.
 #include <cmath>
 #include <cstdio>
@@ -50,7 +50,7 @@ std::string to_json(const DiscrepancyResult& r, int indent) {
                {"independence_p", r.base.independence_p},
                {"forward_rmse_rad", r.base.forward_rmse_rad}};
   j["findings"] = findings_json(r.findings);
-  // Outside issue 5's names: found, but under the reporting bar (not in final).
+  // Outside the documented names: found, but under the reporting bar (not in final).
   j["tentative_findings"] = findings_json(r.tentative);
   if (!r.tentative.empty()) j["tentative_heldout_rmse_Nm"] = r.tentative_heldout_rmse_Nm;
   j["min_reported_gain"] = r.min_reported_gain;

@@ -135,7 +135,7 @@ DiscrepancyResult discover(const fit::FitData& data, const DiscrepancyOptions& o
 DiscrepancyResult discover(const fit::FitData& data, const fit::FitData& heldout,
                            const DiscrepancyOptions& opt = {});
 
-// {"base": …, "findings": […], "final": …} with the names issue 5 fixes.
+// {"base": …, "findings": […], "final": …} with the names docs/discrepancy.md fixes.
 std::string to_json(const DiscrepancyResult& r, int indent = 2);
 
 // When the base and the final model do not describe the same held-out rows,

@@ -1,4 +1,4 @@
-// The effect library's ids and parameter names (issue 5's table), as the
+// The effect library's ids and parameter names (the table in docs/discrepancy.md), as the
 // discrepancy JSON reports them. The physics is in knoblab/model/effects.hpp.
 #pragma once
 

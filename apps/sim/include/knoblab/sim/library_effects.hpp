@@ -1,6 +1,6 @@
 // The effect library (knoblab/model/effects.hpp) on the simulated knob, so a
 // capture can carry physics the thesis model leaves out: what discrepancy
-// discovery must find (issue 5's concealed-effect captures).
+// discovery must find (the concealed-effect benchmark's captures).
 //
 //   "stribeck:excess=0.002,v_s=0.1"   → a KnobEffect with those parameters
 //   "spring:K=0.01"                   → folded into KnobParams (a model term)
