@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Audits kernel-config/ as the Yocto kernels use it (fragments merged onto a
-defconfig by merge_config): usage: kernel-config-audit.py DIR [KERNEL_SRC]
+defconfig by merge_config):
+  kernel-config-audit.py [--kernel-src SRC] [--format-only FRAGMENT...] DIR
 
 - every fragment line is blank, a comment, CONFIG_X=value or
   '# CONFIG_X is not set', and no option is given two values across fragments;
@@ -9,8 +10,11 @@ defconfig by merge_config): usage: kernel-config-audit.py DIR [KERNEL_SRC]
   rcu_nocbs) agree and are kept out of irqaffinity;
 - with KERNEL_SRC (a source tree or a linux-*.tar.* file), every option a
   fragment names is declared by some Kconfig file in it. Without one the names
-  are not checked, and the output says so.
+  are not checked, and the output says so;
+- --format-only fragments (the layer's own, for patched kernels whose options
+  no mainline Kconfig declares) only for their lines.
 """
+import argparse
 import pathlib
 import re
 import sys
@@ -21,9 +25,9 @@ UNSET = re.compile(r'^# (CONFIG_[A-Z0-9_]+) is not set$')
 KCONFIG_SYMBOL = re.compile(rb'^\s*(?:menu)?config\s+([A-Za-z0-9_]+)\s*$', re.M)
 
 
-def parse_fragments(root):
+def parse_fragments(frags):
     values, errors = {}, []
-    for frag in sorted(root.glob('*.cfg')):
+    for frag in frags:
         for n, raw in enumerate(frag.read_text().splitlines(), 1):
             line = raw.strip()
             m = SET.match(line) or UNSET.match(line)
@@ -88,23 +92,28 @@ def kconfig_symbols(src):
 
 
 def main():
-    if len(sys.argv) not in (2, 3):
-        sys.exit(__doc__)
-    root = pathlib.Path(sys.argv[1])
-    values, errors = parse_fragments(root)
-    errors += check_readme(root) + check_cmdline(root)
-    print(f'{len(values)} options in {len(list(root.glob("*.cfg")))} fragments')
-    if len(sys.argv) == 3:
-        symbols = kconfig_symbols(sys.argv[2])
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument('dir', type=pathlib.Path)
+    ap.add_argument('--kernel-src')
+    ap.add_argument('--format-only', nargs='*', default=[], type=pathlib.Path)
+    args = ap.parse_args()
+    frags = sorted(args.dir.glob('*.cfg'))
+    values, errors = parse_fragments(frags)
+    errors += check_readme(args.dir) + check_cmdline(args.dir)
+    for extra in args.format_only:
+        errors += parse_fragments([extra])[1]
+    print(f'{len(values)} options in {len(frags)} fragments; {len(args.format_only)} more checked for format')
+    if args.kernel_src:
+        symbols = kconfig_symbols(args.kernel_src)
         if not symbols:
-            errors.append(f'no Kconfig symbols found in {sys.argv[2]}')
+            errors.append(f'no Kconfig symbols found in {args.kernel_src}')
         for name, (_, where) in sorted(values.items()):
             if symbols and name[len('CONFIG_'):] not in symbols:
-                errors.append(f'{where}: {name} is declared by no Kconfig in {sys.argv[2]}')
-        print(f'option names checked against {len(symbols)} Kconfig symbols of {sys.argv[2]}')
+                errors.append(f'{where}: {name} is declared by no Kconfig in {args.kernel_src}')
+        print(f'option names checked against {len(symbols)} Kconfig symbols of {args.kernel_src}')
     else:
-        print('option names NOT checked against a Kconfig: no kernel source given (KNOBLAB_KERNEL_SRC); '
-              'the CI image\'s kernel build checks them with olddefconfig')
+        print('option names NOT checked against a Kconfig: no kernel source given '
+              '(KNOBLAB_KERNEL_SRC, or Debian\'s linux-source package in /usr/src)')
     for e in errors:
         print(e)
     sys.exit(1 if errors else 0)

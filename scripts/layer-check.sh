@@ -4,7 +4,8 @@
 #
 #   kernel-config  every fragment line well formed, no option set two ways,
 #                  option names checked against a kernel source's Kconfig
-#                  when one is given (KNOBLAB_KERNEL_SRC: a tree or tarball)
+#                  when there is one (KNOBLAB_KERNEL_SRC: a tree or tarball;
+#                  else Debian's linux-source in /usr/src, if installed)
 #   kas-schema     kas/*.yml against kas's JSON schema
 #   oelint         oelint-adv on every recipe, append and class
 #   graph-MACHINE  bitbake -g haptics-image per kas configuration: every
@@ -83,7 +84,11 @@ as_bb() {
 # --- steps --------------------------------------------------------------------
 
 step_kernel_config() {
-  python3 "$repo/scripts/kernel-config-audit.py" "$repo/kernel-config" ${KNOBLAB_KERNEL_SRC:+"$KNOBLAB_KERNEL_SRC"}
+  local src=${KNOBLAB_KERNEL_SRC:-} own
+  [ -n "$src" ] || src=$(ls -d /usr/src/linux-source-*.tar.* 2>/dev/null | sort -V | tail -1) || true
+  mapfile -t own < <(find "$repo/meta-haptics" -name '*.cfg' | sort)
+  python3 "$repo/scripts/kernel-config-audit.py" ${src:+--kernel-src "$src"} \
+    --format-only "${own[@]}" -- "$repo/kernel-config"
 }
 
 step_kas_schema() {
