@@ -86,7 +86,7 @@ as_bb() {
 step_kernel_config() {
   local src=${KNOBLAB_KERNEL_SRC:-} own
   [ -n "$src" ] || src=$(ls -d /usr/src/linux-source-*.tar.* 2>/dev/null | sort -V | tail -1) || true
-  mapfile -t own < <(find "$repo/meta-haptics" -name '*.cfg' | sort)
+  mapfile -t own < <(find "$repo/meta-haptics" -path '*/recipes-kernel/*' -name '*.cfg' | sort)
   python3 "$repo/scripts/kernel-config-audit.py" ${src:+--kernel-src "$src"} \
     --format-only "${own[@]}" -- "$repo/kernel-config"
 }
@@ -154,6 +154,8 @@ step_check_layer() {
 t0=$SECONDS
 setup_host
 log "host setup: $((SECONDS - t0)) s"
+runuser -u "$bb_user" -- test -r "$repo/meta-haptics/conf/layer.conf" ||
+  die "$bb_user cannot read $repo (bitbake parses the layer as that user): make its directories world-readable"
 
 failed=()
 for s in $steps; do
