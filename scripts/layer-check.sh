@@ -11,6 +11,10 @@
 #   graph-MACHINE  bitbake -g haptics-image per kas configuration: every
 #                  dependency resolves and the task graph is written
 #   check-layer    yocto-check-layer on meta-haptics
+#   graph-wrynose  (only when named in KNOBLAB_LAYER_CHECK_STEPS) bitbake -g
+#                  haptics-image for qemux86-64 on Yocto 6.0 wrynose, from
+#                  KNOBLAB_LAYERS_WRYNOSE (openembedded-core, meta-openembedded
+#                  at wrynose, bitbake at 2.18)
 #
 # The upstream layers come from KNOBLAB_LAYERS (default
 # /var/cache/knoblab/layers: poky, meta-openembedded, meta-qt6,
@@ -134,6 +138,27 @@ graph() {
   echo "$(wc -l < "$build/pn-buildlist") recipes in haptics-image's graph ($build/task-depends.dot)"
 }
 
+# The wrynose compatibility LAYERSERIES_COMPAT declares: no kas file pins
+# wrynose, so the configuration is written here.
+step_graph_wrynose() {
+  local up=${KNOBLAB_LAYERS_WRYNOSE:-/var/cache/knoblab/layers-wrynose} build=$work/graph-wrynose l
+  for l in openembedded-core bitbake meta-openembedded; do
+    [ -d "$up/$l" ] || { echo "no $up/$l (KNOBLAB_LAYERS_WRYNOSE)"; return 1; }
+  done
+  mkdir -p "$build/conf"
+  printf 'BBPATH = "${TOPDIR}"\nBBFILES ?= ""\nBBLAYERS = "%s %s %s"\n' "$up/openembedded-core/meta" \
+    "$up/meta-openembedded/meta-oe" "$repo/meta-haptics" > "$build/conf/bblayers.conf"
+  printf 'MACHINE = "qemux86-64"\nDISTRO = "knoblab"\nBB_NO_NETWORK = "1"\nCONNECTIVITY_CHECK_URIS = ""\n' \
+    > "$build/conf/local.conf"
+  chown -R "$bb_user:" "$build"
+  as_bb "cd '$build' && export PATH='$up/bitbake/bin':\$PATH BBPATH='$build' &&
+         rm -f task-depends.dot pn-buildlist && bitbake -g haptics-image" > "$build/graph.log" 2>&1 || {
+    tail -40 "$build/graph.log"; return 1; }
+  grep -E '^(Parsing of|WARNING|ERROR)' "$build/graph.log" | head -20 || true
+  [ -s "$build/task-depends.dot" ] || { echo "no task graph written"; return 1; }
+  echo "$(wc -l < "$build/pn-buildlist") recipes in haptics-image's graph ($build/task-depends.dot)"
+}
+
 step_check_layer() {
   local build=$work/check-layer
   mkdir -p "$build/conf"
@@ -167,6 +192,7 @@ for s in $steps; do
     graph-raspberrypi5) fn="graph $s kas/raspberrypi5.yml" ;;
     graph-qemux86-64-xenomai) fn="graph $s kas/qemux86-64.yml:kas/xenomai.yml" ;;
     check-layer) fn=step_check_layer ;;
+    graph-wrynose) fn=step_graph_wrynose ;;
     *) die "unknown step $s" ;;
   esac
   log "$s ..."
