@@ -12,7 +12,8 @@ IMAGE_INSTALL += "knoblab rt-tests"
 # The Qt kiosk goes here once it exists (meta-qt6 is already in the kas files):
 #   IMAGE_INSTALL += "knoblab-ui"
 
-# A wic disk: root, then the data partition, mounted at /var/lib/knoblab once
+# A wic disk (the .wks files beside this recipe, where scarthgap and later
+# releases both look): root, then the data partition, mounted at /var/lib/knoblab once
 # /var/lib's volatile overlay is up (the fstab line wic writes says so).
 IMAGE_FSTYPES:append = " wic"
 WKS_FILE:qemux86-64 = "haptics-qemux86-64.wks"

@@ -42,9 +42,6 @@ SRCREV_machine = "ed55d775d3b3df3948c43598e7a68be7c0737392"
 SRCREV_xenomai = "2f15f8c5970b23428a00ccd17249de26a240dc33"
 SRCREV_FORMAT = "machine_xenomai"
 
-# scarthgap unpacks into WORKDIR; later releases into UNPACKDIR.
-UNPACKDIR ??= "${WORKDIR}"
-
 KERNEL_VERSION_SANITY_SKIP = "1"
 
 # No yocto-kernel-cache description for this tree: the in-tree defconfig plus

@@ -23,8 +23,6 @@ SRC_URI = "${KNOBLAB_GIT_URI};destsuffix=git \
            "
 SRCREV ??= "cc46180b6a4c5cbe6ed4d0ca61b5ca7bd26f8d76"
 
-# scarthgap unpacks into WORKDIR; later releases into UNPACKDIR.
-UNPACKDIR ??= "${WORKDIR}"
 S = "${UNPACKDIR}/git"
 
 inherit cmake pkgconfig systemd useradd ptest features_check

@@ -18,8 +18,6 @@ SRC_URI = "git://github.com/Linux-Comedi/comedilib.git;protocol=https;branch=mas
 # The r0_13_0 tag.
 SRCREV = "0daef9e0af61ddb09411b1218e9d3238753e0799"
 
-# scarthgap unpacks into WORKDIR; later releases into UNPACKDIR.
-UNPACKDIR ??= "${WORKDIR}"
 S = "${UNPACKDIR}/git"
 
 inherit autotools pkgconfig

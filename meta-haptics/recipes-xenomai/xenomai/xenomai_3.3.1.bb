@@ -20,8 +20,6 @@ SRC_URI = "git://source.denx.de/Xenomai/xenomai.git;protocol=https;branch=stable
 # The v3.3.1 tag.
 SRCREV = "2f15f8c5970b23428a00ccd17249de26a240dc33"
 
-# scarthgap unpacks into WORKDIR; later releases into UNPACKDIR.
-UNPACKDIR ??= "${WORKDIR}"
 S = "${UNPACKDIR}/git"
 
 inherit autotools pkgconfig
