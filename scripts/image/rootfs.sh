@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# rootfs.sh DEBS_DIR: the QEMU image's root filesystem as a directory: Debian
+# 13 by mmdebstrap with systemd as init, images/qemu/packages.txt, the
+# project's .debs (apt brings their library dependencies), and the files in
+# images/qemu/rootfs/ (hapticd's config, the gpio-sim, Modbus-simulator and
+# ready units, fstab). Prints the directory.
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
+[ $# -eq 1 ] || die "usage: rootfs.sh DEBS_DIR"
+debs=$1
+img=$repo/images/qemu
+root=$image_dir/rootfs
+
+includes=(--include="$(list_packages "$img/packages.txt" | paste -sd,)")
+for d in "$debs"/*.deb; do includes+=(--include="$d"); done
+[ ${#includes[@]} -gt 1 ] || die "rootfs: no .deb in $debs"
+
+need_host_tool mmdebstrap mmdebstrap
+t=$(now)
+rm -rf "$root"
+log "rootfs: mmdebstrap $suite into $root"
+# Documentation and translations are left out: nobody reads them on the
+# appliance, and they would make the disk image larger and slower to write.
+mmdebstrap --quiet --variant=minbase "${includes[@]}" \
+  --hook-dir=/usr/share/mmdebstrap/hooks/file-mirror-automount \
+  --dpkgopt='path-exclude=/usr/share/man/*' \
+  --dpkgopt='path-exclude=/usr/share/locale/*' \
+  --dpkgopt='path-exclude=/usr/share/doc/*' \
+  --customize-hook="sync-in '$img/rootfs' /" \
+  --customize-hook='chroot "$1" systemd-sysusers' \
+  --customize-hook='chroot "$1" systemctl enable knoblab-gpio-sim knoblab-modbus-sim hapticd knoblab-ready' \
+  --customize-hook=': >"$1/etc/machine-id"' \
+  "$suite" "$root" ${mirror:+"$mirror"} >&2
+log "rootfs: $(du -sh "$root" | cut -f1) in $(took "$t")"
+echo "$root"
