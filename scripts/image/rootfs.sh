@@ -3,7 +3,13 @@
 # 13 by mmdebstrap with systemd as init, images/qemu/packages.txt, the
 # project's .debs (apt brings their library dependencies), and the files in
 # images/qemu/rootfs/ (hapticd's config, the gpio-sim, Modbus-simulator and
-# ready units, fstab). Prints the directory.
+# ready units, fstab). The read-only root must already hold every mount
+# point (the store's /var/lib/knoblab) and an empty machine-id (systemd then
+# makes one up at each boot); root has no password, for the serial console's
+# emergency shell: a development and CI image. The kernel has no virtual
+# terminals and the guest no network, so their gettys and apt's timers are
+# masked, and so is e2scrub (nothing to scrub on a read-only root). Prints
+# the directory.
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 [ $# -eq 1 ] || die "usage: rootfs.sh DEBS_DIR"
 debs=$1
@@ -29,6 +35,9 @@ mmdebstrap --quiet --variant=minbase "${includes[@]}" \
   --customize-hook='chroot "$1" systemd-sysusers' \
   --customize-hook='chroot "$1" systemctl enable knoblab-gpio-sim knoblab-modbus-sim hapticd knoblab-ready' \
   --customize-hook=': >"$1/etc/machine-id"' \
+  --customize-hook='mkdir -p "$1/var/lib/knoblab"' \
+  --customize-hook='chroot "$1" systemctl mask getty-static.service getty@tty1.service apt-daily.timer apt-daily-upgrade.timer e2scrub_all.timer e2scrub_reap.service' \
+  --customize-hook='chroot "$1" passwd --quiet --delete root' \
   "$suite" "$root" ${mirror:+"$mirror"} >&2
 log "rootfs: $(du -sh "$root" | cut -f1) in $(took "$t")"
 echo "$root"
