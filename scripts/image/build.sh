@@ -14,7 +14,10 @@ cp "$bz" "$image_dir/bzImage"
 kernel_s=$(( $(now) - t ))
 
 t=$(now); debs=$("$here/debs.sh"); debs_s=$(( $(now) - t ))
-t=$(now); rootfs=$("$here/rootfs.sh" "$debs"); rootfs_s=$(( $(now) - t ))
+# A kernel with modules (KNOBLAB_KERNEL_DAQ=1) leaves them beside the bzImage.
+modules=$(dirname "$bz")/modules.tar
+[ -f "$modules" ] || modules=
+t=$(now); rootfs=$("$here/rootfs.sh" "$debs" $modules); rootfs_s=$(( $(now) - t ))
 t=$(now); "$here/disks.sh" "$rootfs" >/dev/null; disks_s=$(( $(now) - t ))
 
 # The kernel command line: the serial console, the read-only root on the

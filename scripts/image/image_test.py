@@ -134,6 +134,7 @@ def main():
             qemu.kill()
             qemu.wait()
     report["figures"]["qemu_exit_status"] = qemu.returncode
+    report["build"] = build_figures(args.image_dir)
 
     with open(os.path.join(args.image_dir, "report.json"), "w") as f:
         json.dump(report, f, indent=2)
@@ -143,6 +144,20 @@ def main():
     print(f"image-test: report in {os.path.join(args.image_dir, 'report.json')}")
     print(f"{passed} passed, {failed} failed")
     return 0 if failed == 0 and passed > 0 else 1
+
+
+def build_figures(image_dir):
+    """What ./run image recorded: each step's seconds, and the kernel's
+    build-info (version, fragments, build and CPU seconds) when it has one."""
+    out = {}
+    try:
+        with open(os.path.join(image_dir, "build-times.json")) as f:
+            out["image"] = json.load(f)
+        with open(out["image"].get("kernel_build_info", "")) as f:
+            out["kernel"] = dict(line.rstrip("\n").split("=", 1) for line in f if "=" in line)
+    except (OSError, ValueError):
+        pass
+    return out
 
 
 def run_checks(con, qemu, t0, args, report, check):

@@ -9,7 +9,9 @@
 # package's version, the fragments and the recipe below: a second call with
 # nothing changed prints the cached bzImage at once.
 #
-#   KNOBLAB_KERNEL_DAQ=1  also apply daq.cfg (Comedi, IIO, counter, PWM)
+#   KNOBLAB_KERNEL_DAQ=1  also apply daq.cfg (Comedi, IIO, counter, PWM), with
+#                         ci-modules.cfg for its modules, which go into
+#                         modules.tar beside the bzImage (usr/lib/modules/…)
 #   KNOBLAB_KERNEL_BASE=defconfig  x86_64_defconfig + kvm_guest.config instead
 #                         of tinyconfig + ci-base.cfg (to compare build times)
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
@@ -21,10 +23,13 @@ case "$base" in
   defconfig) fragments=() ;;
   *) die "KNOBLAB_KERNEL_BASE is tiny or defconfig, not $base" ;;
 esac
+daq=${KNOBLAB_KERNEL_DAQ:-0}
+[ "$daq" = 1 ] && [ "$base" = tiny ] && fragments+=("$kc/ci-modules.cfg")
 fragments+=("$kc/rt.cfg" "$kc/loop-core.cfg" "$kc/sim-io.cfg")
-[ "${KNOBLAB_KERNEL_DAQ:-0}" = 1 ] && fragments+=("$kc/daq.cfg")
+targets=bzImage
+if [ "$daq" = 1 ]; then fragments+=("$kc/daq.cfg"); targets="bzImage modules"; fi
 # Bump when the steps below change what gets built from the same inputs.
-recipe="base=$base make=bzImage modules=no v1"
+recipe="base=$base make=$targets v1"
 
 kroot=$(ensure_chroot kbuild "$repo/scripts/image/kernel-packages.txt")
 version=$(chroot "$kroot" dpkg-query -W -f='${Version}' linux-source-6.12)
@@ -69,10 +74,17 @@ if [ ! -f "$out/bzImage" ]; then
   log "kernel: building bzImage on $(nproc) cores (log: $blog)"
   # The CPU time too: on a machine shared with other builds the wall time
   # says more about the neighbours than about the kernel.
-  in_chroot "$kroot" "$work" -- bash -c "TIMEFORMAT='%U %S'; { time $kmake bzImage 2>&1; } 2>'$work/cpu'" \
+  in_chroot "$kroot" "$work" -- bash -c "TIMEFORMAT='%U %S'; { time $kmake $targets 2>&1; } 2>'$work/cpu'" \
     >"$blog" 2>&1 || { tail -40 "$blog" >&2; die "kernel: build failed (log: $blog)"; }
   cpu_s=$(awk '{ printf "%d", $1 + $2 }' "$work/cpu")
   cp "$src/arch/x86/boot/bzImage" "$out.partial/bzImage"
+  if [ "$daq" = 1 ]; then
+    # usr/lib/modules/VERSION: trixie's /lib is a symlink into /usr.
+    in_chroot "$kroot" "$work" -- bash -c \
+      "$kmake modules_install INSTALL_MOD_PATH='$work/modroot/usr' INSTALL_MOD_STRIP=1" >>"$blog" 2>&1 ||
+      { tail -20 "$blog" >&2; die "kernel: modules_install failed (log: $blog)"; }
+    tar -C "$work/modroot" -cf "$out.partial/modules.tar" usr
+  fi
   printf 'version=%s\nkey=%s\nrecipe=%s\nfragments=%s\nbuild_seconds=%d\ncpu_seconds=%d\ntotal_seconds=%d\ncores=%d\nloadavg=%s\n' \
     "$version" "$key" "$recipe" "${fragments[*]##*/}" $(( $(now) - t1 )) "$cpu_s" $(( $(now) - t0 )) \
     "$(nproc)" "$(cut -d' ' -f1-3 /proc/loadavg)" >"$out.partial/build-info"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# rootfs.sh DEBS_DIR: the QEMU image's root filesystem as a directory: Debian
+# rootfs.sh DEBS_DIR [MODULES_TAR]: the QEMU image's root filesystem as a directory: Debian
 # 13 by mmdebstrap with systemd as init, images/qemu/packages.txt, the
 # project's .debs (apt brings their library dependencies), and the files in
 # images/qemu/rootfs/ (hapticd's config, the gpio-sim, Modbus-simulator and
@@ -11,13 +11,17 @@
 # masked, and so is e2scrub (nothing to scrub on a read-only root). Prints
 # the directory.
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
-[ $# -eq 1 ] || die "usage: rootfs.sh DEBS_DIR"
+[ $# -ge 1 ] && [ $# -le 2 ] || die "usage: rootfs.sh DEBS_DIR [MODULES_TAR]"
 debs=$1
+modules=${2:-}
 img=$repo/images/qemu
 root=$image_dir/rootfs
 
 includes=(--include="$(list_packages "$img/packages.txt" | paste -sd,)")
 for d in "$debs"/*.deb; do includes+=(--include="$d"); done
+hooks=()
+# The kernel's modules, when it has any (KNOBLAB_KERNEL_DAQ=1).
+[ -n "$modules" ] && hooks+=(--customize-hook="tar -C \"\$1\" -xf '$modules'")
 [ ${#includes[@]} -gt 1 ] || die "rootfs: no .deb in $debs"
 
 need_host_tool mmdebstrap mmdebstrap
@@ -38,6 +42,7 @@ mmdebstrap --quiet --variant=minbase "${includes[@]}" \
   --customize-hook='mkdir -p "$1/var/lib/knoblab"' \
   --customize-hook='chroot "$1" systemctl mask getty-static.service getty@tty1.service apt-daily.timer apt-daily-upgrade.timer e2scrub_all.timer e2scrub_reap.service' \
   --customize-hook='chroot "$1" passwd --quiet --delete root' \
+  "${hooks[@]}" \
   "$suite" "$root" ${mirror:+"$mirror"} >&2
 log "rootfs: $(du -sh "$root" | cut -f1) in $(took "$t")"
 echo "$root"
