@@ -49,7 +49,9 @@ std::string value_hint(const control::ArgSpec& a) {
     case ArgType::label: return "ID";
     case ArgType::integer_list: return "[INT,...]";
     case ArgType::choice_list: return "'[\"NAME\",...]'";
+    case ArgType::number_list: return "[NUM,...]";
     case ArgType::object: return "";
+    case ArgType::object_list: return "'[{...},...]'";
     case ArgType::choice: {
       std::string out;
       for (const auto c : a.choices) out += (out.empty() ? "" : "|") + std::string(c);
@@ -84,7 +86,8 @@ std::string command_list() {
   std::string out;
   for (const auto& c : control::command_table()) {
     std::string name = "  " + std::string(control::to_string(c.command));
-    name.resize(indent.size(), ' ');
+    if (name.size() < indent.size()) name.resize(indent.size(), ' ');
+    else name += ' ';  // a long name pushes its summary along
     out += name + std::string(c.summary) + "\n";
     std::vector<std::string> words;
     arg_words(c.args, "", words);

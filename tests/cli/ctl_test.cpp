@@ -228,6 +228,23 @@ TEST(Ctl, KeyValueArgumentsReachTheDaemon) {
   EXPECT_EQ(parse_stdout(r).value("mode", ""), "render") << r.out;
 }
 
+TEST(Ctl, APrototyperDesignTravelsAsTilesAndABadCurveIsRefusedByItsPath) {
+  Hapticd d;
+  ASSERT_TRUE(d.ready()) << d.log();
+  const std::string bump = R"([{"theta_min":-3.1416,"theta_max":3.1416,"f_vel":{"x":[-3.1416,0,3.1416],"y":[0.0005,0.002,0.0005]}}])";
+  RunResult r = ctl(d.socket(), {"load_tiles", "position=" + bump});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(parse_stdout(r)["position"], 1) << r.out;
+  r = ctl(d.socket(), {"get_state"});
+  EXPECT_EQ(parse_stdout(r)["tiles"]["position"], 1) << r.out;
+  const std::string backwards = R"([{"theta_min":0,"theta_max":1,"f_vel":{"x":[1,0],"y":[0.001,0.001]}}])";
+  r = ctl(d.socket(), {"load_tiles", "position=" + backwards});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("position[0].f_vel"), std::string::npos) << r.err;
+  r = ctl(d.socket(), {"get_state"});
+  EXPECT_EQ(parse_stdout(r)["tiles"]["position"], 1) << "a refused set leaves the loaded one: " << r.out;
+}
+
 TEST(Ctl, DottedKeysBuildNestedObjects) {
   Hapticd d;
   ASSERT_TRUE(d.ready()) << d.log();

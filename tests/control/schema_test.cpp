@@ -28,10 +28,21 @@ json valid_value(const ArgSpec& spec) {
     case ArgType::choice: return spec.choices.front();
     case ArgType::integer_list: return json::array({static_cast<std::int64_t>(spec.range.lo)});
     case ArgType::choice_list: return json::array({spec.choices.front()});
+    case ArgType::number_list: {
+      // Strictly increasing, enough elements: valid as knots too.
+      json a = json::array();
+      for (int i = 0; i < static_cast<int>(std::max(spec.size.lo, 1.0)); ++i) a.push_back(spec.range.lo + i);
+      return a;
+    }
     case ArgType::object: {
       json o = json::object();
       for (const auto& a : spec.object->args) o[std::string(a.key)] = valid_value(a);
       return o;
+    }
+    case ArgType::object_list: {
+      ArgSpec one = spec;
+      one.type = ArgType::object;
+      return json::array({valid_value(one)});
     }
   }
   return nullptr;
@@ -46,7 +57,9 @@ bool accepts_type(ArgType t, const json& v) {
     case ArgType::choice: return v.is_string();
     case ArgType::label: return v.is_string() || v.is_number_integer();
     case ArgType::integer_list:
-    case ArgType::choice_list: return v.is_array();
+    case ArgType::choice_list:
+    case ArgType::number_list:
+    case ArgType::object_list: return v.is_array();
     case ArgType::object: return v.is_object();
   }
   return false;
@@ -54,21 +67,23 @@ bool accepts_type(ArgType t, const json& v) {
 
 struct KeyUnderTest {
   Command command;
-  std::string path;  // "pid.Kp"
+  std::string path;  // "pid.Kp", "position[0].f_vel.x"
   json::json_pointer pointer;
   const ArgSpec* spec;
   std::vector<const ArgSpec*> parents;
 };
 
+// Keys inside a list of objects are tested in its first element.
 void collect(Command c, const ObjectSchema& schema, const std::string& prefix, json::json_pointer ptr,
              std::vector<const ArgSpec*> parents, std::vector<KeyUnderTest>& out) {
   for (const auto& a : schema.args) {
     const std::string key(a.key);
     out.push_back({c, prefix + key, ptr / key, &a, parents});
-    if (a.type == ArgType::object) {
+    if (a.type == ArgType::object || a.type == ArgType::object_list) {
       auto p = parents;
       p.push_back(&a);
-      collect(c, *a.object, prefix + key + ".", ptr / key, p, out);
+      const bool list = a.type == ArgType::object_list;
+      collect(c, *a.object, prefix + key + (list ? "[0]." : "."), list ? ptr / key / 0 : ptr / key, p, out);
     }
   }
 }
@@ -86,6 +101,7 @@ json args_with(const KeyUnderTest& k, const json& value) {
   for (const ArgSpec* p : k.parents) {
     ptr /= std::string(p->key);
     if (!args.contains(ptr)) args[ptr] = valid_value(*p);
+    if (p->type == ArgType::object_list) ptr /= 0;
   }
   args[k.pointer] = value;
   return args;
@@ -153,6 +169,22 @@ TEST(Schema, ValuesOutsideTheirRangeAreRefused) {
         expect_refused(k, args_with(k, json::array({1.5})), "non-integer element");
         break;
       case ArgType::choice_list: expect_refused(k, args_with(k, json::array({"no-such-choice"})), "unknown element"); break;
+      case ArgType::number_list: {
+        json above = valid_value(s);
+        above.back() = s.range.hi + margin;
+        expect_refused(k, args_with(k, above), "element above range");
+        json text = valid_value(s);
+        text.back() = "1";
+        expect_refused(k, args_with(k, text), "non-number element");
+        expect_refused(k, args_with(k, json::array()), "too few elements");
+        break;
+      }
+      case ArgType::object_list: {
+        const auto p = validate_args(args_with(k, json::array({1})), command_spec(k.command).args);
+        ASSERT_TRUE(p) << k.path << " accepted an element that is not an object";
+        EXPECT_EQ(p->key, k.path + "[0]") << "the problem names the element";
+        break;
+      }
       case ArgType::boolean:
       case ArgType::object: break;
     }
@@ -199,6 +231,13 @@ TEST(Schema, GroupRules) {
   EXPECT_EQ(refusal(Command::start_capture,
                     R"({"seconds":1,"knob":"k","swept_sine":{"a":0,"b":1,"c":1,"d":1},"torque_sweep":{"a":0,"b":1,"c":0.01,"d":1}})"),
             "swept_sine");
+  EXPECT_EQ(refusal(Command::load_tiles, R"({"position":[{"theta_min":0,"theta_max":1}]})"), "position[0].f_pos")
+      << "a tile needs at least one curve";
+  EXPECT_EQ(refusal(Command::load_tiles,
+                    R"({"time":[{"duration":1,"f_vel":{"x":[0,1],"y":[0,0]}},{"duration":1,"f_acc":{"x":[0],"y":[0]}}]})"),
+            "time[1].f_acc.x")
+      << "a problem deep in a list names its element";
+  EXPECT_EQ(refusal(Command::load_tiles, "{}"), std::nullopt) << "{} clears the tiles";
 }
 
 // docs/protocol.md carries the table rendered by schema_markdown() between

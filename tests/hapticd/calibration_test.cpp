@@ -21,6 +21,7 @@
 #include "knoblab/hal/memory_lines.hpp"
 #include "knoblab/store/store.hpp"
 #include "knoblab/sim/presets.hpp"
+#include "core_harness.hpp"
 #include "shared_host.hpp"
 
 namespace knoblab::hapticd {
@@ -143,14 +144,7 @@ TEST(CalibrationRun, GravityOnATiltedTripodRecoversTheTrueCompensation) {
   EXPECT_NEAR(g.C_ci95, 1.96 * g.C_se, 0.01 * g.C_se);
 }
 
-sim::PlantConfig free_shaft() {
-  sim::PlantConfig p;
-  p.load = sim::Load::Free;
-  // The unloaded camera still turns its gripper and sensor flange: with the
-  // bare 1e-6 kg·m² rotor of Eq. 3 the thesis PID (Kd = 1 V·s/rad) is unstable.
-  p.motor.extra_inertia = sim::presets::kHapticKnobInertia;
-  return p;
-}
+using testing::free_shaft;
 
 TEST(CalibrationRun, SpatialOnAFreeShaftTracksLikeTable4) {
   capture::SimDaq daq(free_shaft(), 10000.0);

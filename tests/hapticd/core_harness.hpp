@@ -20,11 +20,22 @@ inline sim::PlantConfig plant_with(const char* knob) {
   return p;
 }
 
+// The camera with nothing in its gripper (calibration runs). The unloaded
+// camera still turns its gripper and sensor flange: with the bare 1e-6 kg·m²
+// rotor of Eq. 3 the thesis PID (Kd = 1 V·s/rad) is unstable.
+inline sim::PlantConfig free_shaft() {
+  sim::PlantConfig p;
+  p.load = sim::Load::Free;
+  p.motor.extra_inertia = sim::presets::kHapticKnobInertia;
+  return p;
+}
+
 class CoreHarness {
  public:
   static constexpr double kRate = 10000.0;
 
-  CoreHarness() : daq_(plant_with("moderate-detents"), kRate), core_(core_config(daq_)) {}
+  explicit CoreHarness(const sim::PlantConfig& plant = plant_with("moderate-detents"))
+      : daq_(plant, kRate), core_(core_config(daq_)) {}
 
   capture::SimDaq& daq() { return daq_; }
   HapticCore& core() { return core_; }

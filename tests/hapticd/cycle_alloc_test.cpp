@@ -102,5 +102,51 @@ TEST(CycleAllocations, NoModeNoTransitionAndNoCommandAllocatesInTheCycle) {
   EXPECT_EQ(g_allocations.load(), 0);
 }
 
+// Prototyper tiles are built (allocating) outside the loop and handed over
+// whole: rendering them, replacing them while they play and clearing them
+// allocates nothing in the cycle; nor does a new sensor calibration.
+std::unique_ptr<TileSet> tile_set(double damping) {
+  auto set = std::make_unique<TileSet>();
+  const std::vector<double> x = {-3.0, 0.0, 3.0}, b = {damping, 2 * damping, damping};
+  model::PositionTile p;
+  p.f_vel = model::CubicSpline(x, b);
+  p.theta_min = -3.0;
+  p.theta_max = 3.0;
+  set->position.push_back(p);
+  model::TimeTile t;
+  const std::vector<double> ts = {0.0, 0.005, 0.01}, k = {0.0, 0.01, 0.0};
+  t.f_pos = model::CubicSpline(ts, k);
+  t.duration = 0.01;
+  t.loop = true;
+  set->time.push_back(t);
+  return set;
+}
+
+TEST(CycleAllocations, RenderingTilesSwappingThemAndRecalibratingAllocateNothingInTheCycle) {
+  Rig rig;
+  rig.set_render(5e-4, 0.01);
+  rig.command(CoreCommand::SetMode, Mode::Render);
+  rig.run(10);
+  g_allocations = 0;
+
+  ASSERT_TRUE(rig.core().load_tiles(tile_set(1e-3)));
+  rig.run(500);  // the time tile loops five times
+  for (int i = 0; i < 5; ++i) {  // a designer dragging a point while it plays
+    auto next = tile_set(1e-3 * (i + 2));
+    while (!rig.core().load_tiles(std::move(next))) rig.run(1);
+    rig.run(20);
+  }
+  ASSERT_TRUE(rig.core().load_tiles(nullptr));
+  rig.run(10);
+  CoreCommand cal;
+  cal.kind = CoreCommand::SetSensorCalibration;
+  cal.sensors = rig.daq().calibration();
+  cal.sensors.C_cal *= 1.01;
+  rig.post(cal);
+  rig.run(10);
+  EXPECT_DOUBLE_EQ(rig.core().sensor_calibration().C_cal, cal.sensors.C_cal);
+  EXPECT_EQ(g_allocations.load(), 0);
+}
+
 }  // namespace
 }  // namespace knoblab::hapticd

@@ -33,6 +33,7 @@ struct Bench {
       capture::DaqInputs in;
       in.encoder_counts = static_cast<std::int64_t>(std::floor(theta(i * kDt) / (2 * M_PI / cal.counts_per_rev)));
       in.torque_V = measured_torque / cal.torque_Nm_per_V;
+      rc.take_tiles();  // as the core does, every cycle
       rc.update(sensors.update(in), out, s);
       if (commands) commands->push_back(out.motor_command_V);
     }
@@ -151,7 +152,12 @@ TEST(Handoff, OffersAreTakenInOrderAndOldObjectsComeBackForDeletion) {
   ASSERT_TRUE(h.publish(std::make_unique<int>(3)));
   EXPECT_EQ(*h.current(), 3);
   ASSERT_TRUE(h.publish(nullptr));
+  auto kept = std::make_unique<int>(5);
+  EXPECT_FALSE(h.publish(std::move(kept)));  // "none" is not yet taken
+  ASSERT_TRUE(kept) << "a refused offer stays with the caller, to offer again";
   EXPECT_EQ(h.current(), nullptr);
+  ASSERT_TRUE(h.publish(std::move(kept)));
+  EXPECT_EQ(*h.current(), 5);
 }
 
 }  // namespace

@@ -11,7 +11,7 @@ constexpr std::array<std::string_view, kErrorCodeCount> kErrorNames = {
 constexpr std::array<std::string_view, kCommandCount> kCommandNames = {
     "hello",       "ping",         "get_state",  "load_model", "set_params",
     "start_capture", "stop_capture", "start_trial", "stop_trial", "calibrate",
-    "clear_fault", "set_mode",     "subscribe"};
+    "accept_calibration", "load_tiles", "clear_fault", "set_mode", "subscribe"};
 
 static_assert(static_cast<std::size_t>(ErrorCode::internal) + 1 == kErrorCodeCount);
 static_assert(static_cast<std::size_t>(Command::subscribe) + 1 == kCommandCount);

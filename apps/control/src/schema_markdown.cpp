@@ -33,7 +33,9 @@ std::string constraint_text(const ArgSpec& a) {
     case ArgType::choice: return choices_text(a.choices);
     case ArgType::integer_list: return range_text(a.size) + " elements, each " + range_text(a.range);
     case ArgType::choice_list: return range_text(a.size) + " of " + choices_text(a.choices);
+    case ArgType::number_list: return range_text(a.size) + " elements, each " + range_text(a.range);
     case ArgType::object: return "see below";
+    case ArgType::object_list: return range_text(a.size) + " elements, each as below";
   }
   return "";
 }
@@ -44,6 +46,7 @@ void rows(std::string& out, const ObjectSchema& schema, const std::string& prefi
            (a.required ? "yes" : "no") + " | " + constraint_text(a) + " | " + std::string(a.unit) +
            " | " + std::string(a.doc) + " |\n";
     if (a.type == ArgType::object) rows(out, *a.object, prefix + std::string(a.key) + ".");
+    if (a.type == ArgType::object_list) rows(out, *a.object, prefix + std::string(a.key) + "[].");
   }
 }
 
@@ -57,8 +60,10 @@ void group_lines(std::string& out, const ObjectSchema& schema, const std::string
       case GroupRule::Kind::at_least_one: out += "- at least one of " + keys + "\n"; break;
     }
   }
-  for (const auto& a : schema.args)
+  for (const auto& a : schema.args) {
     if (a.type == ArgType::object) group_lines(out, *a.object, prefix + std::string(a.key) + ".");
+    if (a.type == ArgType::object_list) group_lines(out, *a.object, prefix + std::string(a.key) + "[].");
+  }
 }
 
 }  // namespace
@@ -73,7 +78,9 @@ std::string_view to_string(ArgType type) noexcept {
     case ArgType::label: return "label";
     case ArgType::integer_list: return "integer list";
     case ArgType::choice_list: return "choice list";
+    case ArgType::number_list: return "number list";
     case ArgType::object: return "object";
+    case ArgType::object_list: return "object list";
   }
   return "?";
 }

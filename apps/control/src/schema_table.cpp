@@ -45,6 +45,14 @@ constexpr ArgSpec object(std::string_view key, bool required, const ObjectSchema
                          std::string_view doc) {
   return {key, ArgType::object, required, {}, {}, {}, schema, {}, doc};
 }
+constexpr ArgSpec number_list(std::string_view key, bool required, Range count, Range each,
+                              std::string_view unit, std::string_view doc) {
+  return {key, ArgType::number_list, required, each, count, {}, nullptr, unit, doc};
+}
+constexpr ArgSpec object_list(std::string_view key, bool required, Range count, const ObjectSchema* schema,
+                              std::string_view doc) {
+  return {key, ArgType::object_list, required, {}, count, {}, schema, {}, doc};
+}
 
 template <std::size_t N>
 constexpr std::array<ArgSpec, N> all_optional(std::array<ArgSpec, N> args) {
@@ -132,6 +140,47 @@ constexpr std::array kCalibrateArgs = {
     number("gravity_ramp_seconds", kOptional, 0, 10, "s", "gravity: velocity ramps, not fitted (default 0.5)"),
     object("pid", kOptional, &kPid, "position controller gains (Eq. 4)"),
 };
+// accept_calibration: the kinds whose fit changes the sensor constants.
+constexpr std::array<std::string_view, 2> kAcceptableKinds = {"accel_gain", "gravity"};
+constexpr std::array kAcceptArgs = {
+    choice("kind", kRequired, kAcceptableKinds, "which calibration to apply"),
+    integer("repetitions", kOptional, 1, 10, "",
+            "average this many of the latest good runs of that kind (default 3, as the thesis did)"),
+};
+
+// load_tiles: the prototyper's tiles (Eq. 19/20). A curve is a cubic spline
+// through knots; its unit is the term's coefficient (stiffness, damping, mass).
+constexpr std::array kSplineArgs = {
+    number_list("x", kRequired, {2, 256}, {-1e4, 1e4}, "rad or s",
+                "knots, strictly increasing (θ for position tiles, t for time tiles)"),
+    number_list("y", kRequired, {2, 256}, {-1e3, 1e3}, "",
+                "values at the knots, as many as x: N·m/rad (f_pos), N·m·s/rad (f_vel), kg·m² (f_acc)"),
+    boolean("periodic", kOptional, "the curve repeats (y's ends equal); default: natural cubic ends"),
+};
+constexpr ObjectSchema kSpline{kSplineArgs, {}};
+constexpr std::array<std::string_view, 3> kTileTerms = {"f_pos", "f_vel", "f_acc"};
+constexpr std::array kTileGroups = {GroupRule{GroupRule::Kind::at_least_one, kTileTerms}};
+constexpr std::array kPositionTileArgs = {
+    number("theta_min", kRequired, -1000, 1000, "rad", "the tile acts from this angle"),
+    number("theta_max", kRequired, -1000, 1000, "rad", "up to this angle (more than theta_min)"),
+    object("f_pos", kOptional, &kSpline, "stiffness over θ: τ += f_pos(θ)·θ"),
+    object("f_vel", kOptional, &kSpline, "damping over θ: τ += f_vel(θ)·θ̇"),
+    object("f_acc", kOptional, &kSpline, "mass over θ: τ += f_acc(θ)·θ̈"),
+};
+constexpr ObjectSchema kPositionTile{kPositionTileArgs, kTileGroups};
+constexpr std::array kTimeTileArgs = {
+    number("duration", kRequired, 0.001, 3600, "s", "the tile acts for this long after loading"),
+    boolean("loop", kOptional, "repeat every duration (default false: once)"),
+    object("f_pos", kOptional, &kSpline, "stiffness over t: τ += f_pos(t)·θ"),
+    object("f_vel", kOptional, &kSpline, "damping over t: τ += f_vel(t)·θ̇"),
+    object("f_acc", kOptional, &kSpline, "mass over t: τ += f_acc(t)·θ̈"),
+};
+constexpr ObjectSchema kTimeTile{kTimeTileArgs, kTileGroups};
+constexpr std::array kTilesArgs = {
+    object_list("position", kOptional, {0, 16}, &kPositionTile, "position tiles (Eq. 19)"),
+    object_list("time", kOptional, {0, 16}, &kTimeTile, "time tiles (Eq. 20), timed from when they load"),
+};
+
 constexpr std::array<std::string_view, 4> kModes = {"idle", "render", "capture", "calibrate"};
 constexpr std::array kModeArgs = {choice("mode", kRequired, kModes, "daemon mode")};
 
@@ -162,6 +211,10 @@ constexpr std::array kTable = {
                 R"({"study":"S1","participant":7,"condition":"detents-12"})"},
     CommandSpec{Command::stop_trial, {}, "stop the running trial", "{}"},
     CommandSpec{Command::calibrate, {kCalibrateArgs, {}}, "run a calibration", R"({"kind":"spatial"})"},
+    CommandSpec{Command::accept_calibration, {kAcceptArgs, {}},
+                "apply the average of the latest calibration runs to the sensors", R"({"kind":"accel_gain"})"},
+    CommandSpec{Command::load_tiles, {kTilesArgs, {}}, "render these prototyper tiles on top of the model ({} clears)",
+                R"({"position":[{"theta_min":-3.1416,"theta_max":3.1416,"f_vel":{"x":[-3.1416,0,3.1416],"y":[0.0005,0.002,0.0005]}}]})"},
     CommandSpec{Command::clear_fault, {}, "clear a latched fault", "{}"},
     CommandSpec{Command::set_mode, {kModeArgs, {}}, "switch the daemon's mode", R"({"mode":"render"})"},
     CommandSpec{Command::subscribe, {kSubscribeArgs, {}}, "choose the events pushed to this client",

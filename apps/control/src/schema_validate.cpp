@@ -120,9 +120,27 @@ Problem validate_value(const std::string& key, const json& j, const ArgSpec& spe
       for (const auto& e : j)
         if (!is_choice(e, spec.choices)) return problem(key, "every element must be one of " + quoted_list(spec.choices));
       return std::nullopt;
+    case ArgType::number_list:
+      if (!j.is_array()) return problem(key, "must be an array of numbers (got " + json_type_name(j) + ")");
+      if (auto p = check_size(key, j.size(), spec.size, "elements")) return p;
+      for (const auto& e : j) {
+        if (!e.is_number()) return problem(key, "every element must be a number (got " + json_type_name(e) + ")");
+        if (const double v = e.get<double>(); !std::isfinite(v) || !in_range(v, spec.range))
+          return problem(key, "every element must be in " + range_text(spec.range) + " (got " + e.dump() + ")");
+      }
+      return std::nullopt;
     case ArgType::object:
       if (!j.is_object()) return problem(key, "must be an object (got " + json_type_name(j) + ")");
       return validate_object(j, *spec.object, key + ".");
+    case ArgType::object_list:
+      if (!j.is_array()) return problem(key, "must be an array of objects (got " + json_type_name(j) + ")");
+      if (auto p = check_size(key, j.size(), spec.size, "elements")) return p;
+      for (std::size_t i = 0; i < j.size(); ++i) {
+        const std::string item = key + "[" + std::to_string(i) + "]";
+        if (!j[i].is_object()) return problem(item, "must be an object (got " + json_type_name(j[i]) + ")");
+        if (auto p = validate_object(j[i], *spec.object, item + ".")) return p;
+      }
+      return std::nullopt;
   }
   return problem(key, "has an unknown type in the schema");
 }

@@ -159,6 +159,10 @@ CalibrationData CalibrationController::data() const {
   return d;
 }
 
+namespace {
+constexpr double kMaxRelativeGainCi = 0.5;
+}  // namespace
+
 CalibrationResult evaluate(const CalibrationData& d) {
   CalibrationResult r;
   r.kind = d.kind;
@@ -166,6 +170,7 @@ CalibrationResult evaluate(const CalibrationData& d) {
   r.cycles = d.cycles;
   r.fault = (d.flags_seen & interchange::kFaultLatched) != 0;
   r.torque_limited = (d.flags_seen & interchange::kTorqueLimited) != 0;
+  r.in_use = d.calibration;
   r.updated = d.calibration;
   auto stats = [](const fit::RunningStats& s) { return s.count() >= 2 ? s.stats() : fit::ErrorStats{}; };
   r.table4 = {stats(d.theta), stats(d.omega), stats(d.alpha), stats(d.torque)};
@@ -173,6 +178,15 @@ CalibrationResult evaluate(const CalibrationData& d) {
     if (d.kind == CalibrationKind::AccelGain) {
       r.accel = d.accel.fit();
       r.updated.C_cal = r.accel->C_cal;
+      // A gain is positive, and one known only to within ±50 % (95 %) is not
+      // a calibration: the run did not accelerate the shaft enough. (Runs on
+      // the simulated camera give ±5–20 %; the average of three is the
+      // calibration, and its spread is reported.)
+      if (!(r.accel->C_cal > 0.0) || r.accel->C_cal_ci95 > kMaxRelativeGainCi * r.accel->C_cal)
+        throw fit::FitDataError("C_cal = " + std::to_string(r.accel->C_cal) + " ± " +
+                                std::to_string(r.accel->C_cal_ci95) +
+                                " (95 %) is not a usable gain: the run did not accelerate the shaft enough; "
+                                "use the Table 3 sweep (sweep_seconds 5)");
     } else if (d.kind == CalibrationKind::Gravity) {
       r.gravity = d.gravity.fit();
       r.updated.grav_A = r.gravity->A;
@@ -188,6 +202,12 @@ CalibrationResult evaluate(const CalibrationData& d) {
   }
   if (r.error.empty() && !r.complete) r.error = "the run was stopped before it finished";
   if (r.error.empty() && r.fault) r.error = "a fault latched during the run (outputs were forced safe)";
+  // Fits against the reference motion are only as good as the tracking: a
+  // clipped command means the shaft did not follow it.
+  if (r.error.empty() && r.torque_limited &&
+      (d.kind == CalibrationKind::AccelGain || d.kind == CalibrationKind::Gravity))
+    r.error = "the torque limit clipped the command, so the shaft did not follow the reference; "
+              "use a longer sweep (sweep_seconds) or revolution (gravity_seconds)";
   return r;
 }
 

@@ -3,8 +3,11 @@
 #include <cmath>
 #include <cstdio>
 #include <string_view>
+#include <thread>
+#include <variant>
 
 #include "knoblab/hapticd/daemon.hpp"
+#include "knoblab/hapticd/tiles_json.hpp"
 #include "knoblab/rt/timing_stats.hpp"
 #include "knoblab/modbus/status_bits.hpp"
 
@@ -93,10 +96,14 @@ json ControlHandler::state_json() const {
   j["rate_hz"] = daemon_.config().core.rate_hz;
   j["modbus"] = modbus::status::describe(daemon_.modbus_status());
   j["ring_dropped"] = daemon_.ring_dropped();
+  j["tiles"] = tiles_;
   const RecorderStats r = daemon_.recorder_stats();
   j["recorder"] = {{"buffered", r.buffered}, {"max_buffered", r.max_buffered}, {"capacity", r.capacity},
                    {"retries", r.retries}, {"failed", r.failed}};
   if (const auto cal = daemon_.last_calibration()) j["last_calibration"] = calibration_json(*cal);
+  // The constants in use and when each kind was last accepted (its age).
+  j["calibration"] = {{"constants", json::parse(daemon_.sensor_calibration().to_json())},
+                      {"accepted", daemon_.accepted_calibrations()}};
   return j;
 }
 
@@ -166,6 +173,23 @@ Reply ControlHandler::render(const json& a, bool partial) {
   return Reply::success({{"ramp_s", kParamRampSeconds}});
 }
 
+Reply ControlHandler::load_tiles(const json& a) {
+  auto parsed = tiles_from_json(a, daemon_.config().core.limits);
+  if (auto* problem = std::get_if<ParamProblem>(&parsed))
+    return Reply::failure(ErrorCode::bad_args, problem->message, problem->key);
+  auto& set = std::get<std::unique_ptr<TileSet>>(parsed);
+  const json counts = {{"position", set->position.size()}, {"time", set->time.size()}};
+  if (set->position.empty() && set->time.empty()) set.reset();  // {} clears
+  // The loop takes an offered set every cycle; a second load right after
+  // the first waits for that cycle.
+  for (int attempt = 0; !daemon_.core().load_tiles(std::move(set)); ++attempt) {
+    if (attempt == 100) return Reply::failure(ErrorCode::busy, "the loop is not taking tiles (is it running?)");
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  tiles_ = counts;
+  return Reply::success(counts);
+}
+
 Reply ControlHandler::start_trial(const json& a) {
   const json trial = {{"study", a.at("study")}, {"participant", a.at("participant")},
                       {"condition", a.at("condition")}};
@@ -229,6 +253,20 @@ Reply ControlHandler::handle(const control::Request& r) {
       break;
     case Command::start_trial:
       return start_trial(r.args);
+    case Command::load_tiles:
+      return load_tiles(r.args);
+    case Command::accept_calibration: {
+      const auto kind = parse_calibration_kind(r.args.at("kind").get<std::string>());
+      if (!kind) return Reply::failure(ErrorCode::bad_args, "unknown calibration kind", "kind");
+      auto accepted = daemon_.accept_calibration(*kind, r.args.value("repetitions", 3));
+      if (const auto* why = std::get_if<std::string>(&accepted)) return Reply::failure(ErrorCode::busy, *why);
+      json result = to_json(std::get<AcceptedCalibration>(accepted));
+      result["calibration"] = json::parse(daemon_.sensor_calibration().to_json());
+      result["saved_to"] = daemon_.config().calibration_file.empty()
+                               ? json(nullptr)
+                               : json(daemon_.config().calibration_file.string());
+      return Reply::success(result);
+    }
     case Command::stop_trial:
       if (trial_id_ == 0) return Reply::failure(ErrorCode::busy, "no trial is running");
       c.kind = CoreCommand::StopRecording;
@@ -312,6 +350,7 @@ void ControlHandler::publish_events(control::Server& server, const std::vector<F
   for (const FinishedRecording& f : finished)
     server.publish({"capture_finished",
                     {{"capture_id", f.capture_id},
+                     {"kind", to_string(f.kind)},
                      {"samples", f.samples},
                      {"complete", f.complete},
                      {"end_reason", f.end_reason}}});

@@ -41,7 +41,9 @@ capture::SensorConfig sensor_config(const CoreConfig& c) {
 }  // namespace
 
 HapticCore::HapticCore(const CoreConfig& cfg)
-    : cfg_(cfg), sensors_(sensor_config(cfg)), render_(render_config(cfg)), supervisor_(cfg.limits) {}
+    : cfg_(cfg), sensors_(sensor_config(cfg)), render_(render_config(cfg)), supervisor_(cfg.limits) {
+  sensor_calibration_.publish(cfg.calibration);
+}
 
 CoreState HapticCore::state() const {
   const std::uint64_t p = published_.load(std::memory_order_acquire);
@@ -107,6 +109,11 @@ void HapticCore::apply(const CoreCommand& c) {
     case CoreCommand::ForceSafe:
       forced_ |= c.faults;
       break;
+    case CoreCommand::SetSensorCalibration:
+      if (running() || recording_ != 0) break;
+      sensors_.set_calibration(c.sensors);
+      sensor_calibration_.publish(c.sensors);
+      break;
   }
 }
 
@@ -134,6 +141,7 @@ void HapticCore::cycle(const capture::DaqInputs& in, const CycleContext& ctx, ca
   // pop_slot_ is built once: a CoreCommand holds controllers whose default
   // construction designs filters (allocates), which the loop must not do.
   for (int i = 0; i < 4 && commands_.try_pop(pop_slot_); ++i) apply(pop_slot_);
+  render_.take_tiles();
 
   const capture::SensorReading& sensed = sensors_.update(in);
   capture::Sample& s = rec.sample;

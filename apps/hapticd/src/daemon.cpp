@@ -8,6 +8,7 @@
 
 #include "knoblab/control/server.hpp"
 #include "knoblab/control/telemetry_writer.hpp"
+#include "knoblab/hapticd/calibration_file.hpp"
 #include "knoblab/hapticd/control_handler.hpp"
 #include "knoblab/modbus/status_bits.hpp"
 #include "knoblab/rt/os.hpp"
@@ -51,7 +52,8 @@ Daemon::Daemon(DaemonConfig cfg, std::unique_ptr<capture::Daq> daq, std::unique_
       lines_(std::move(lines)),
       core_(std::make_unique<HapticCore>(cfg_.core)),
       impl_(std::make_unique<Impl>()),
-      stats_(std::make_unique<rt::StatsPublisher>()) {
+      stats_(std::make_unique<rt::StatsPublisher>()),
+      accepted_(cfg_.accepted_calibrations) {
   if (!daq_) throw std::invalid_argument("hapticd: no DAQ backend");
   if (!lines_) throw std::invalid_argument("hapticd: no digital-lines backend");
   cfg_.loop.rate_hz = cfg_.core.rate_hz;
@@ -135,7 +137,7 @@ bool Daemon::start_capture(const capture::CaptureConfig& cc, double seconds, con
   store::NewCapture info;
   info.knob = knob.empty() ? cfg_.knob : knob;
   info.rate_hz = cfg_.core.rate_hz;
-  info.calibration = cfg_.core.calibration.to_json();
+  info.calibration = sensor_calibration().to_json();
   const bool torque = cc.kind == capture::CaptureConfig::Stimulus::Torque;
   const model::ChirpPhase ch = torque ? cc.torque_stimulus.chirp() : cc.stimulus.chirp();
   info.stimulus = nlohmann::json{{"kind", torque ? "torque_sweep" : "swept_sine"}, {"equation", 8},
@@ -145,7 +147,7 @@ bool Daemon::start_capture(const capture::CaptureConfig& cc, double seconds, con
   CoreCommand c;
   c.kind = CoreCommand::StartCapture;
   c.recording_id = next_recording_id_.fetch_add(1);
-  recorder_->describe(c.recording_id, info);
+  recorder_->describe(c.recording_id, info, RecordingKind::stimulus);
   capture::CaptureConfig full = cc;
   full.rate_hz = cfg_.core.rate_hz;
   c.capture = capture::CaptureController(full);
@@ -169,7 +171,7 @@ bool Daemon::start_calibration(const CalibrationConfig& cfg, double& seconds, st
   }
   CalibrationConfig full = cfg;
   full.rate_hz = cfg_.core.rate_hz;
-  full.calibration = cfg_.core.calibration;
+  full.calibration = sensor_calibration();
   full.torque_per_volt = cfg_.core.limits.torque_per_volt;
   CoreCommand c;
   c.kind = CoreCommand::StartCalibration;
@@ -185,7 +187,7 @@ bool Daemon::start_calibration(const CalibrationConfig& cfg, double& seconds, st
   info.source = "hapticd";
   info.metadata = std::string(R"({"calibration":")") + to_string(full.kind) + "\"}";
   c.recording_id = next_recording_id_.fetch_add(1);
-  recorder_->describe(c.recording_id, info);
+  recorder_->describe(c.recording_id, info, RecordingKind::calibration);
   if (!post(c)) {
     why = "the loop is not taking commands";
     return false;
@@ -207,13 +209,13 @@ std::optional<std::uint32_t> Daemon::start_trial(const nlohmann::json& trial, st
   store::NewCapture info;
   info.knob = cfg_.knob;
   info.rate_hz = cfg_.core.rate_hz;
-  info.calibration = cfg_.core.calibration.to_json();
+  info.calibration = sensor_calibration().to_json();
   info.source = "hapticd";
   info.metadata = nlohmann::json{{"trial", trial}}.dump();
   CoreCommand c;
   c.kind = CoreCommand::StartRecording;
   c.recording_id = next_recording_id_.fetch_add(1);
-  recorder_->describe(c.recording_id, info);
+  recorder_->describe(c.recording_id, info, RecordingKind::trial);
   if (!post(c)) {
     why = "the loop is not taking commands";
     return std::nullopt;
@@ -222,14 +224,85 @@ std::optional<std::uint32_t> Daemon::start_trial(const nlohmann::json& trial, st
 }
 
 std::optional<CalibrationResult> Daemon::last_calibration() const {
-  if (core_->calibrations_finished() == 0) return std::nullopt;
-  return evaluate(core_->last_calibration());
+  std::lock_guard lock(calibration_mutex_);
+  if (calibration_history_.empty()) return std::nullopt;
+  return calibration_history_.back();
 }
 
 std::optional<CalibrationResult> Daemon::take_finished_calibration() {
+  std::lock_guard lock(calibration_mutex_);
+  std::optional<CalibrationResult> out;
+  out.swap(unpublished_calibration_);
+  return out;
+}
+
+void Daemon::collect_finished_calibrations() {
   const std::uint64_t n = core_->calibrations_finished();
-  if (n == 0 || calibrations_taken_.exchange(n) == n) return std::nullopt;
-  return evaluate(core_->last_calibration());
+  if (n == calibrations_seen_) return;
+  calibrations_seen_ = n;
+  CalibrationResult r = evaluate(core_->last_calibration());  // solves small systems: outside the lock
+  std::lock_guard lock(calibration_mutex_);
+  // Enough for three repetitions of every kind, with retries.
+  constexpr std::size_t kKeep = 32;
+  if (calibration_history_.size() == kKeep) calibration_history_.erase(calibration_history_.begin());
+  calibration_history_.push_back(r);
+  unpublished_calibration_ = std::move(r);
+}
+
+nlohmann::json Daemon::accepted_calibrations() const {
+  std::lock_guard lock(calibration_mutex_);
+  return accepted_;
+}
+
+std::variant<AcceptedCalibration, std::string> Daemon::accept_calibration(CalibrationKind kind, int repetitions) {
+  std::lock_guard accepting(accept_mutex_);
+  const CoreState s = core_->state();
+  if (s.recording_id != 0 || s.mode == Mode::Capture || s.mode == Mode::Calibrate)
+    return std::string("a capture, calibration or trial is recording: accept once it has ended, so that no "
+                       "recording mixes two calibrations");
+  const capture::SensorCalibration before = core_->sensor_calibration();
+  std::variant<AcceptedCalibration, std::string> averaged;
+  {
+    std::lock_guard lock(calibration_mutex_);
+    averaged = average_runs(calibration_history_, kind, repetitions, before);
+  }
+  auto* a = std::get_if<AcceptedCalibration>(&averaged);
+  if (!a) return averaged;
+  a->unix_time = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+
+  // Applied by the loop; it refuses if a recording started meanwhile.
+  const auto apply = [this](const capture::SensorCalibration& c) {
+    CoreCommand cmd;
+    cmd.kind = CoreCommand::SetSensorCalibration;
+    cmd.sensors = c;
+    if (!post(cmd)) return false;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(500);
+    while (!(core_->sensor_calibration() == c)) {
+      if (std::chrono::steady_clock::now() > deadline) return false;
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    return true;
+  };
+  if (!apply(a->after)) return std::string("the loop did not take the new calibration (a recording started?)");
+
+  nlohmann::json accepted;
+  {
+    std::lock_guard lock(calibration_mutex_);
+    accepted = accepted_;
+  }
+  accepted[to_string(kind)] = to_json(*a);
+  if (!cfg_.calibration_file.empty()) {
+    try {
+      write_calibration_file(cfg_.calibration_file, {a->after, accepted});
+    } catch (const std::exception& e) {
+      // Kept only if it survives a restart: go back to what the file says.
+      (void)apply(before);
+      return std::string("cannot save the calibration (") + e.what() + "); the previous one stays in use";
+    }
+  }
+  std::lock_guard lock(calibration_mutex_);
+  accepted_ = std::move(accepted);
+  return averaged;
 }
 
 bool Daemon::clear_faults() {
@@ -300,6 +373,7 @@ void Daemon::writer_main() {
       c.kind = CoreCommand::StopRecording;
       post(c);
     }
+    collect_finished_calibrations();
     auto fin = recorder_->take_finished();
     publish_events(fin);
     if (!fin.empty()) {

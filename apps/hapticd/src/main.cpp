@@ -6,6 +6,7 @@
 //   hapticd --backend sim --rate 10000 --cycles 200000 --free-run --stats-json bench.json
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "knoblab/capture/sim_daq.hpp"
+#include "knoblab/hapticd/calibration_file.hpp"
 #include "knoblab/hal/factory.hpp"
 #include "knoblab/hal/memory_lines.hpp"
 #include "knoblab/hal/modbus_config.hpp"
@@ -52,6 +54,8 @@ const char* kUsage =
     "  --max-overruns N     overruns in a row that latch the overruns fault (default 10;\n"
     "                       raise it only on a host that is not realtime, e.g. for tests)\n"
     "  --model FILE         render model to load at start (knoblab fit --render-model)\n"
+    "  --calibration FILE   sensor constants to start with, where accept_calibration\n"
+    "                       saves them (created on the first accept; docs/protocol.md)\n"
     "  --free-run           run cycles back to back (benchmark); renders a model with\n"
     "                       detents, damping and virtual-mass inertia\n"
     "  --stats-json FILE    write the loop's timing figures as JSON at exit\n"
@@ -66,6 +70,7 @@ struct Options {
   json daq = {{"backend", "sim"}, {"knob", "moderate-detents"}};
   json lines = {{"backend", "memory"}, {"estop", "released"}};
   bool allow_memory_lines = false;
+  bool calibration_loaded = false;  // from --calibration: the sim's own constants do not apply
   knoblab::hapticd::DaemonConfig cfg;
   std::string stats_json;
 };
@@ -176,6 +181,18 @@ Options parse(const std::vector<std::string>& a) {
       o.cfg.loop.max_cycles = std::stoll(need(a, i));
     } else if (k == "--model") {
       o.cfg.initial_model = read_model_file(need(a, i));
+    } else if (k == "--calibration") {
+      o.cfg.calibration_file = need(a, i);
+      if (std::filesystem::exists(o.cfg.calibration_file)) {
+        try {
+          const auto file = knoblab::hapticd::read_calibration_file(o.cfg.calibration_file);
+          o.cfg.core.calibration = file.constants;
+          o.cfg.accepted_calibrations = file.accepted;
+          o.calibration_loaded = true;
+        } catch (const std::runtime_error& e) {
+          throw UsageError(std::string("--calibration: ") + e.what());
+        }
+      }
     } else if (k == "--free-run") {
       o.cfg.loop.free_run = true;
     } else if (k == "--stats-json") {
@@ -245,7 +262,8 @@ int main(int argc, char** argv) {
   }
   try {
     auto daq = knoblab::hal::make_daq(o.daq, "daq");
-    if (auto* sim = dynamic_cast<knoblab::capture::SimDaq*>(daq.get())) o.cfg.core.calibration = sim->calibration();
+    if (auto* sim = dynamic_cast<knoblab::capture::SimDaq*>(daq.get()); sim && !o.calibration_loaded)
+      o.cfg.core.calibration = sim->calibration();
     auto lines = knoblab::hal::make_lines(o.lines, "lines");
     Daemon daemon(o.cfg, std::move(daq), std::move(lines));
     if (o.cfg.loop.free_run) render_benchmark_model(daemon);

@@ -27,9 +27,19 @@ Recorder::Recorder(store::Store* store, store::NewCapture defaults, RecorderOpti
   if (store_) store_->set_busy_timeout(options_.busy_timeout_ms);
 }
 
-void Recorder::describe(std::uint32_t recording_id, const store::NewCapture& info) {
+const char* to_string(RecordingKind k) {
+  switch (k) {
+    case RecordingKind::stimulus: return "stimulus";
+    case RecordingKind::calibration: return "calibration";
+    case RecordingKind::trial: return "trial";
+    case RecordingKind::other: return "other";
+  }
+  return "?";
+}
+
+void Recorder::describe(std::uint32_t recording_id, const store::NewCapture& info, RecordingKind kind) {
   std::lock_guard lock(described_mutex_);
-  described_[recording_id] = info;
+  described_[recording_id] = {info, kind};
 }
 
 void Recorder::set_max_buffered(std::size_t samples) {
@@ -47,7 +57,8 @@ void Recorder::start(const LoopRecord& r) {
   {
     std::lock_guard lock(described_mutex_);
     const auto it = described_.find(rec.id);
-    rec.info = it != described_.end() ? it->second : defaults_;
+    rec.info = it != described_.end() ? it->second.info : defaults_;
+    if (it != described_.end()) rec.kind = it->second.kind;
     // Ids only grow: anything described up to this one is used or never ran.
     described_.erase(described_.begin(), described_.upper_bound(rec.id));
   }
@@ -164,6 +175,7 @@ void Recorder::finalize_front() {
   Recording& rec = recordings_.front();
   FinishedRecording f;
   f.recording_id = rec.id;
+  f.kind = rec.kind;
   if (rec.writer) {
     f.capture_id = rec.writer->capture_id();
     f.samples = rec.writer->committed();

@@ -30,6 +30,14 @@ void RenderController::reset() {
   alpha_box_.reset();
   started_ = false;
   cycle_ = 0;
+  tiles_start_t_ = 0.0;  // time tiles start over with the render clock
+}
+
+void RenderController::take_tiles() {
+  const TileSet* tiles = tiles_.current();
+  if (tiles == active_tiles_) return;
+  active_tiles_ = tiles;
+  tiles_start_t_ = static_cast<double>(cycle_) * dt_;
 }
 
 void RenderController::update(const capture::SensorReading& in, capture::DaqOutputs& out,
@@ -65,12 +73,7 @@ void RenderController::update(const capture::SensorReading& in, capture::DaqOutp
   // Prototyper tiles: acceleration from the filtered velocity, box-smoothed.
   const double alpha_est = alpha_box_.process((s.omega - prev_omega_) / dt_);
   prev_omega_ = s.omega;
-  const TileSet* tiles = tiles_.current();
-  if (tiles != active_tiles_) {
-    active_tiles_ = tiles;
-    tiles_start_t_ = s.t;
-  }
-  if (tiles) {
+  if (const TileSet* tiles = active_tiles_) {
     const model::Kinematics<double> kt{s.theta, s.omega, alpha_est};
     tau += model::total_torque(tiles->position, kt) + model::total_torque(tiles->time, s.t - tiles_start_t_, kt);
   }

@@ -1,17 +1,12 @@
 // CSV writing: shortest round-trip numbers, and an atomic replace on disk.
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <atomic>
-#include <cerrno>
 #include <charconv>
-#include <fstream>
 #include <ostream>
 #include <stdexcept>
 #include <string>
 #include <system_error>
 
+#include "knoblab/interchange/atomic_file.hpp"
 #include "knoblab/interchange/csv.hpp"
 
 namespace knoblab::interchange {
@@ -35,10 +30,6 @@ void check_metadata(const Capture& c) {
     if (key.empty() && value.find(':') != std::string::npos)
       bad("a free comment (empty key) must not contain ':'");
   }
-}
-
-[[noreturn]] void throw_errno(const std::string& what) {
-  throw std::system_error(errno, std::generic_category(), what);
 }
 
 }  // namespace
@@ -91,41 +82,7 @@ void write_csv(const Capture& c, const std::filesystem::path& path) {
   validate(c);
   check_metadata(c);
 
-  // Same directory, so rename() is atomic; O_EXCL so concurrent writers never share one.
-  static std::atomic<unsigned> counter{0};
-  const std::filesystem::path tmp =
-      path.string() + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
-  int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-  if (fd < 0) throw_errno("cannot create " + tmp.string());
-  ::close(fd);
-
-  try {
-    {
-      std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-      if (!out) throw_errno("cannot open " + tmp.string());
-      write_csv(c, out);
-      out.close();
-      if (!out) throw std::system_error(std::make_error_code(std::errc::io_error),
-                                        "writing " + tmp.string());
-    }
-    // Data on disk before the rename makes it visible.
-    fd = ::open(tmp.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0) throw_errno("cannot reopen " + tmp.string());
-    const int rc = ::fsync(fd);
-    ::close(fd);
-    if (rc != 0) throw_errno("fsync " + tmp.string());
-    if (::rename(tmp.c_str(), path.c_str()) != 0) throw_errno("cannot rename to " + path.string());
-  } catch (...) {
-    ::unlink(tmp.c_str());
-    throw;
-  }
-  // Persist the rename itself; best effort (some filesystems refuse dir fsync).
-  const auto dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-  fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (fd >= 0) {
-    ::fsync(fd);
-    ::close(fd);
-  }
+  write_file_atomically(path, [&](std::ostream& out) { write_csv(c, out); });
 }
 
 }  // namespace knoblab::interchange

@@ -28,6 +28,7 @@ struct SensorCalibration {
   double alpha(double volts, double theta) const { return C_cal * volts - gravity(theta); }
 
   std::string to_json() const;
+  bool operator==(const SensorCalibration&) const = default;
 };
 
 }  // namespace knoblab::capture

@@ -43,6 +43,9 @@ class SensorFrontEnd {
   const SensorReading& update(const DaqInputs& in);
   const SensorReading& last() const { return reading_; }
   const SensorConfig& config() const { return cfg_; }
+  // New constants from the next update on (an accepted calibration). The
+  // filters keep running: only the scale of what they are fed changes.
+  void set_calibration(const SensorCalibration& c) noexcept { cfg_.calibration = c; }
 
  private:
   SensorConfig cfg_;

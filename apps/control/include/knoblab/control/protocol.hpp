@@ -40,9 +40,10 @@ std::optional<ErrorCode> error_code_from_string(std::string_view name) noexcept;
 // Every v1 command. Wire names are the enumerator names.
 enum class Command : std::uint8_t {
   hello, ping, get_state, load_model, set_params, start_capture, stop_capture,
-  start_trial, stop_trial, calibrate, clear_fault, set_mode, subscribe,
+  start_trial, stop_trial, calibrate, accept_calibration, load_tiles, clear_fault, set_mode,
+  subscribe,
 };
-inline constexpr std::size_t kCommandCount = 13;
+inline constexpr std::size_t kCommandCount = 15;
 
 std::string_view to_string(Command command) noexcept;
 std::optional<Command> command_from_string(std::string_view name) noexcept;

@@ -24,7 +24,9 @@ enum class ArgType : std::uint8_t {
   label,         // opaque id: a string (byte length within `size`) or an integer
   integer_list,  // array, element count within `size`, each an integer within `range`
   choice_list,   // array, element count within `size`, each one of `choices`
+  number_list,   // array, element count within `size`, each a number within `range`
   object,        // nested object validated against `object`
+  object_list,   // array, element count within `size`, each validated against `object`
 };
 
 struct Range {
@@ -37,10 +39,10 @@ struct ArgSpec {
   std::string_view key;
   ArgType type = ArgType::number;
   bool required = false;
-  Range range{};                                // integer, number, integer_list elements
+  Range range{};                                // integer, number, list elements
   Range size{};                                 // string, label, lists
   std::span<const std::string_view> choices{};  // choice, choice_list
-  const ObjectSchema* object = nullptr;         // object
+  const ObjectSchema* object = nullptr;         // object, object_list elements
   std::string_view unit{};
   std::string_view doc{};
 };
@@ -72,7 +74,7 @@ std::string_view to_string(ArgType type) noexcept;
 // Checks `args` against `schema`: no unknown keys, required keys present,
 // types and ranges, then group rules. The first problem found, or nullopt.
 struct ArgProblem {
-  std::string key;      // path inside args, e.g. "pid.Kp"
+  std::string key;      // path inside args, e.g. "pid.Kp" or "position[2].f_vel.x"
   std::string problem;  // e.g. "must be a number (got a string)"
 };
 std::optional<ArgProblem> validate_args(const nlohmann::json& args, const ObjectSchema& schema);

@@ -81,6 +81,7 @@ struct CalibrationResult {
   fit::Table4 table4{};        // channels the run did not measure have n = 0
   std::optional<fit::AccelGainFit> accel;  // accel_gain
   std::optional<fit::GravityFit> gravity;  // gravity
+  capture::SensorCalibration in_use{};   // the constants during the run
   capture::SensorCalibration updated{};  // the run's constants with the fitted ones put in
   std::string error;           // empty when the run and its fits are usable
   bool ok() const { return error.empty(); }

@@ -29,10 +29,6 @@ RenderParams render_params_from_args(const nlohmann::json& args, RenderParams ba
 // finite, those the physics needs non-negative so, and no torque term that
 // alone exceeds the torque limit (the supervisor would clip it, so the knob
 // would not feel like the model the researcher asked for).
-struct ParamProblem {
-  std::string key;
-  std::string message;
-};
 std::optional<ParamProblem> render_params_problem(const RenderParams& p, const SafetyLimits& limits);
 
 class ControlHandler final : public control::CommandHandler {
@@ -49,6 +45,7 @@ class ControlHandler final : public control::CommandHandler {
   control::Reply render(const nlohmann::json& args, bool partial);
   control::Reply start_capture(const nlohmann::json& args);
   control::Reply start_trial(const nlohmann::json& args);
+  control::Reply load_tiles(const nlohmann::json& args);
   void publish_stats(control::Server& server);
   nlohmann::json state_json() const;
   std::optional<control::Reply> refused_while_faulted() const;
@@ -60,6 +57,7 @@ class ControlHandler final : public control::CommandHandler {
   std::uint32_t trial_id_ = 0;  // the running trial's recording (0: none)
   nlohmann::json trial_;        // its study, participant, condition
   std::vector<control::Event> pending_trial_events_;  // published by the writer thread
+  nlohmann::json tiles_ = {{"position", 0}, {"time", 0}};  // the loaded set's size
   std::chrono::steady_clock::time_point next_stats_{};
   int last_mode_ = -1;
 };

@@ -16,6 +16,8 @@
 //   a fault latches     → Idle; a recording ends     ends the run (fault) → Idle
 //                       (fault)
 //   while faulted       render, runs and trials are refused; clear_fault first
+//   set_calibration     the sensors' constants       ignored (a run records)
+//                       change (ignored while a trial records)
 //
 // A recording's last record says how it ended (LoopRecord::end). Commands that
 // end a run take effect at the end of the cycle they arrive in, so that cycle
@@ -55,7 +57,8 @@ struct LineInputs {
 // by the sender, not by the loop.
 struct CoreCommand {
   enum Kind : std::uint8_t { SetMode, StartCapture, StopCapture, SetRender, StartRecording,
-                             StopRecording, ClearFault, ForceSafe, StartCalibration } kind = SetMode;
+                             StopRecording, ClearFault, ForceSafe, StartCalibration,
+                             SetSensorCalibration } kind = SetMode;
   Mode mode = Mode::Idle;
   bool immediate = false;
   RenderParams render{};
@@ -66,6 +69,9 @@ struct CoreCommand {
   // last_calibration() holds what it accumulated.
   CalibrationController calibration{};
   std::uint32_t faults = kFaultCommanded;  // ForceSafe: why (e.g. kFaultWatchdog)
+  // SetSensorCalibration: the front end's constants from the next cycle on.
+  // Ignored while anything records, so no recording mixes two calibrations.
+  capture::SensorCalibration sensors{};
   // StartCapture / StartCalibration / StartRecording: the recording's id, so
   // the sender can describe it to the recorder first (0: the core numbers
   // it; a sender either always chooses ids, increasing, or never does).
@@ -117,7 +123,14 @@ class HapticCore {
 
   // Non-realtime side. False when the queue is full (retry later).
   bool post(const CoreCommand& c) { return commands_.try_push(c); }
+  // Prototyper tiles rendered on top of the model from the next cycle on
+  // (nullptr clears them). False while the loop has not yet taken the
+  // previous set (it does so every cycle); `tiles` then stays with the
+  // caller: retry after a cycle.
+  bool load_tiles(std::unique_ptr<TileSet>&& tiles) { return render_.load_tiles(std::move(tiles)); }
   CoreState state() const;
+  // The sensor constants the front end uses (changed by SetSensorCalibration).
+  capture::SensorCalibration sensor_calibration() const { return sensor_calibration_.read(); }
   // The data of the most recently ended calibration run, and how many runs
   // have ended so far (0: none yet; version changes when a new one ends).
   CalibrationData last_calibration() const { return calibration_result_.read(); }
@@ -147,6 +160,7 @@ class HapticCore {
   CalibrationController calibration_{};
   std::int64_t calibration_left_ = 0;
   rt::Seqlock<CalibrationData> calibration_result_{};
+  rt::Seqlock<capture::SensorCalibration> sensor_calibration_{};
   Supervisor supervisor_;
   Mode mode_ = Mode::Idle;
   bool clear_requested_ = false;

@@ -12,11 +12,14 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <variant>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "knoblab/capture/daq.hpp"
 #include "knoblab/hal/digital_lines.hpp"
+#include "knoblab/hapticd/calibration_acceptance.hpp"
 #include "knoblab/hapticd/core.hpp"
 #include "knoblab/hapticd/recorder.hpp"
 #include "knoblab/hapticd/render_params.hpp"
@@ -47,6 +50,11 @@ struct DaemonConfig {
   // Samples the recorder holds while the store is busy; beyond that the
   // recording is cut and the motor made safe. 0: 60 s at the loop rate.
   std::size_t record_buffer_samples = 0;
+  // Where accepted calibrations are kept (calibration_file.hpp); empty: in
+  // memory only. core.calibration is what it held at start, and
+  // accepted_calibrations its record of what was accepted when.
+  std::filesystem::path calibration_file;
+  nlohmann::json accepted_calibrations = nlohmann::json::object();
 };
 
 class Daemon {
@@ -85,6 +93,14 @@ class Daemon {
   // Each ended calibration once (for the event publisher): nullopt when no
   // new one has ended since the previous call.
   std::optional<CalibrationResult> take_finished_calibration();
+  // Averages the latest `repetitions` good runs of `kind` and makes the
+  // result the sensors' calibration (saved to the calibration file first
+  // when there is one). Refused while anything records. The accepted
+  // calibration, or why not (a sentence for the user).
+  std::variant<AcceptedCalibration, std::string> accept_calibration(CalibrationKind kind, int repetitions);
+  // The sensor constants in use, and the record of accepted calibrations.
+  capture::SensorCalibration sensor_calibration() const { return core_->sensor_calibration(); }
+  nlohmann::json accepted_calibrations() const;
   // Clears latched faults whose cause is gone: first the amplifier's own
   // (over Modbus), then the supervisor's.
   bool clear_faults();
@@ -101,6 +117,8 @@ class Daemon {
   class RunGuard;
   void writer_main();
   void publish_events(const std::vector<FinishedRecording>& finished);
+  // Writer thread: fits each calibration run that ended into the history.
+  void collect_finished_calibrations();
 
   DaemonConfig cfg_;
   std::unique_ptr<capture::Daq> daq_;
@@ -115,7 +133,12 @@ class Daemon {
   std::mutex finished_mutex_;
   std::vector<FinishedRecording> finished_;
   std::mutex command_mutex_;  // post() from several non-RT threads
-  std::atomic<std::uint64_t> calibrations_taken_{0};
+  mutable std::mutex calibration_mutex_;
+  std::uint64_t calibrations_seen_ = 0;                 // writer thread only
+  std::vector<CalibrationResult> calibration_history_;  // oldest first, bounded
+  std::optional<CalibrationResult> unpublished_calibration_;
+  nlohmann::json accepted_;  // kind → the accept record (cfg_.accepted_calibrations at start)
+  std::mutex accept_mutex_;  // one accept at a time
   // Recording ids, chosen here so each is described to the recorder before
   // the loop starts it.
   std::atomic<std::uint32_t> next_recording_id_{1};

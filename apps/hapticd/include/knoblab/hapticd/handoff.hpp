@@ -21,8 +21,9 @@ class Handoff {
   }
 
   // Non-realtime: offer `next` (nullptr = nothing). False while the loop has
-  // not yet taken the previous offer; try again a cycle later.
-  bool publish(std::unique_ptr<T> next) {
+  // not yet taken the previous offer; `next` is then left with the caller,
+  // to offer again a cycle later.
+  bool publish(std::unique_ptr<T>&& next) {
     reclaim();
     T* expected = nullptr;
     T* raw = next ? next.get() : &kNone;

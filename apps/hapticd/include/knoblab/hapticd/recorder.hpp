@@ -27,8 +27,14 @@
 
 namespace knoblab::hapticd {
 
+// What made a recording. Every kind is stored the same way, as a capture;
+// the kind says which command started it (docs/architecture.md, "Names").
+enum class RecordingKind : std::uint8_t { stimulus, calibration, trial, other };
+const char* to_string(RecordingKind k);
+
 struct FinishedRecording {
   std::uint32_t recording_id = 0;
+  RecordingKind kind = RecordingKind::other;
   std::int64_t capture_id = 0;  // 0 when nothing was stored
   std::int64_t samples = 0;     // committed to the store (taken, without a store)
   bool complete = true;         // false: see end_reason
@@ -65,7 +71,8 @@ class Recorder {
   // How recording `recording_id` is described in the store (set before the
   // loop starts it; any thread). A description whose recording never starts
   // (the loop refused it) is forgotten once a later recording starts.
-  void describe(std::uint32_t recording_id, const store::NewCapture& info);
+  void describe(std::uint32_t recording_id, const store::NewCapture& info,
+                RecordingKind kind = RecordingKind::other);
   void set_max_buffered(std::size_t samples);
 
   // One record from the ring, in order of LoopRecord::seq: a gap in seq is
@@ -102,6 +109,7 @@ class Recorder {
   struct Recording {
     std::uint32_t id = 0;
     store::NewCapture info;
+    RecordingKind kind = RecordingKind::other;
     std::optional<store::CaptureWriter> writer;  // once its row exists
     std::deque<store::Sample> samples;           // taken, not yet handed to the writer
     std::int64_t taken = 0;
@@ -130,7 +138,11 @@ class Recorder {
   store::NewCapture defaults_;
   RecorderOptions options_;
   std::mutex described_mutex_;  // describe() comes from control threads
-  std::map<std::uint32_t, store::NewCapture> described_;
+  struct Description {
+    store::NewCapture info;
+    RecordingKind kind = RecordingKind::other;
+  };
+  std::map<std::uint32_t, Description> described_;
   std::deque<Recording> recordings_;
   std::uint32_t current_ = 0;      // recording_id of the newest record taken
   std::uint64_t next_seq_ = 0;     // seq the next record should have

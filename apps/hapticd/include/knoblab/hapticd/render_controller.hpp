@@ -12,18 +12,11 @@
 #include "knoblab/hapticd/handoff.hpp"
 #include "knoblab/hapticd/param_ramp.hpp"
 #include "knoblab/hapticd/render_params.hpp"
+#include "knoblab/hapticd/tile_set.hpp"
 #include "knoblab/hapticd/virtual_mass.hpp"
 #include "knoblab/model/filters.hpp"
-#include "knoblab/model/tiles.hpp"
 
 namespace knoblab::hapticd {
-
-// Haptic Icon Prototyper behaviours (thesis Ch. 5): position tiles (Eq. 19)
-// and time tiles (Eq. 20, time counted from when the set starts rendering).
-struct TileSet {
-  std::vector<model::PositionTile> position;
-  std::vector<model::TimeTile> time;
-};
 
 struct RenderConfig {
   double rate_hz = 10000.0;
@@ -43,8 +36,11 @@ class RenderController {
 
   // Non-realtime: render these tiles on top of the model from the next
   // cycle on (nullptr: none). False while the previous set is still being
-  // handed over; retry shortly.
-  bool load_tiles(std::unique_ptr<TileSet> tiles) { return tiles_.publish(std::move(tiles)); }
+  // handed over (`tiles` then stays with the caller); retry a cycle later.
+  bool load_tiles(std::unique_ptr<TileSet>&& tiles) { return tiles_.publish(std::move(tiles)); }
+  // Realtime, every cycle whatever the mode: takes a set offered by
+  // load_tiles, so tiles load (and their time starts) in any mode.
+  void take_tiles();
 
   void update(const capture::SensorReading& in, capture::DaqOutputs& out, capture::Sample& s);
 

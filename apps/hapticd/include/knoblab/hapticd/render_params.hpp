@@ -3,6 +3,8 @@
 // prototyper tiles by id. SI units.
 #pragma once
 
+#include <string>
+
 namespace knoblab::hapticd {
 
 struct RenderParams {
@@ -18,6 +20,13 @@ struct RenderParams {
   // coupling with its masses, so 12 N·m/rad and 0.088 N·m·s/rad.
   double K_vm = 12.0;
   double B_vm = 0.088;
+};
+
+// Why something cannot be rendered: the offending argument's key (as the
+// protocol names it) and a sentence for the user.
+struct ParamProblem {
+  std::string key;
+  std::string message;
 };
 
 // A time for slider moves to settle: a new value is reached by a linear ramp

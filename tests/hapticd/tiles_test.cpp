@@ -1,0 +1,172 @@
+// Prototyper tiles from the protocol to the knob: load_tiles' arguments are
+// checked (curves that are functions, no energy fed in, nothing the torque
+// limit would clip), a set loads in any mode and is felt in render mode,
+// and loading twice in a row works.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "core_harness.hpp"
+#include "knoblab/hal/memory_lines.hpp"
+#include "knoblab/hapticd/control_handler.hpp"
+#include "knoblab/hapticd/daemon.hpp"
+#include "knoblab/hapticd/tiles_json.hpp"
+#include "shared_host.hpp"
+
+namespace knoblab::hapticd {
+namespace {
+
+using nlohmann::json;
+
+const SafetyLimits kLimits{};
+
+std::optional<ParamProblem> problem_of(const json& args) {
+  auto r = tiles_from_json(args, kLimits);
+  if (auto* p = std::get_if<ParamProblem>(&r)) return *p;
+  return std::nullopt;
+}
+
+json damping_tile(json y) {
+  return {{"theta_min", -1.0}, {"theta_max", 1.0}, {"f_vel", {{"x", {-1.0, -0.5, 0.0, 0.5, 1.0}}, {"y", y}}}};
+}
+
+TEST(TilesJson, ADesignedSetParsesIntoPositionAndTimeTilesInOrder) {
+  const json args = {
+      {"position", {damping_tile({0.001, 0.001, 0.002, 0.001, 0.001}),
+                    {{"theta_min", 0.0}, {"theta_max", 6.283},
+                     {"f_acc", {{"x", {0.0, 3.1416, 6.2832}}, {"y", {1e-5, 2e-5, 1e-5}}, {"periodic", true}}}}}},
+      {"time", {{{"duration", 0.2}, {"loop", true}, {"f_pos", {{"x", {0.0, 0.2}}, {"y", {0.0, 0.01}}}}}}}};
+  auto r = tiles_from_json(args, kLimits);
+  ASSERT_TRUE(std::holds_alternative<std::unique_ptr<TileSet>>(r)) << std::get<ParamProblem>(r).message;
+  const TileSet& set = *std::get<std::unique_ptr<TileSet>>(r);
+  ASSERT_EQ(set.position.size(), 2u);
+  ASSERT_EQ(set.time.size(), 1u);
+  EXPECT_TRUE(set.position[0].f_vel && !set.position[0].f_pos);
+  EXPECT_EQ(set.position[1].f_acc->boundary(), model::SplineBoundary::kPeriodic);
+  EXPECT_TRUE(set.time[0].loop);
+  EXPECT_NEAR((*set.position[0].f_vel)(0.0), 0.002, 1e-12);
+}
+
+TEST(TilesJson, KnotsThatDoNotIncreaseAreRefusedNamingTheCurve) {
+  json tile = damping_tile({0.001, 0.001, 0.001, 0.001, 0.001});
+  tile["f_vel"]["x"] = {-1.0, 0.0, 0.0, 0.5, 1.0};
+  const auto p = problem_of({{"time", json::array()}, {"position", {damping_tile({0.001, 0.001, 0.001, 0.001, 0.001}), tile}}});
+  ASSERT_TRUE(p);
+  EXPECT_EQ(p->key, "position[1].f_vel");
+  EXPECT_NE(p->message.find("increase strictly"), std::string::npos) << p->message;
+}
+
+TEST(TilesJson, CurvesWithMoreKnotsThanValuesAreRefused) {
+  json tile = damping_tile({0.001, 0.001, 0.001, 0.001});
+  const auto p = problem_of({{"position", {tile}}});
+  ASSERT_TRUE(p);
+  EXPECT_EQ(p->key, "position[0].f_vel");
+  EXPECT_NE(p->message.find("5 knots but y has 4"), std::string::npos) << p->message;
+}
+
+TEST(TilesJson, DampingThatDipsBelowZeroBetweenItsKnotsIsRefused) {
+  // Every knot is ≥ 0, but the natural cubic through a lone bump undershoots.
+  const auto p = problem_of({{"position", {damping_tile({0.0, 0.0, 0.01, 0.0, 0.0})}}});
+  ASSERT_TRUE(p);
+  EXPECT_EQ(p->key, "position[0].f_vel");
+  EXPECT_NE(p->message.find("feed energy"), std::string::npos) << p->message;
+  // Negative mass on a time tile, too.
+  const auto q = problem_of({{"time", {{{"duration", 1.0}, {"f_acc", {{"x", {0.0, 1.0}}, {"y", {0.0, -1e-5}}}}}}}});
+  ASSERT_TRUE(q);
+  EXPECT_EQ(q->key, "time[0].f_acc");
+}
+
+TEST(TilesJson, ASpringTileBeyondTheTorqueLimitIsRefusedBeforeItPlays) {
+  // 0.1 N·m/rad × 3 rad = 300 mN·m at the end of the range: over 180.
+  const json spring = {{"theta_min", -3.0}, {"theta_max", 3.0}, {"f_pos", {{"x", {-3.0, 3.0}}, {"y", {0.1, 0.1}}}}};
+  const auto p = problem_of({{"position", {spring}}});
+  ASSERT_TRUE(p);
+  EXPECT_EQ(p->key, "position[0].f_pos");
+  EXPECT_NE(p->message.find("torque limit of 180 mN·m"), std::string::npos) << p->message;
+  json gentle = spring;
+  gentle["f_pos"]["y"] = {0.05, 0.05};  // 150 mN·m at most
+  EXPECT_FALSE(problem_of({{"position", {gentle}}}));
+}
+
+TEST(TilesJson, ATileWhoseRangeIsEmptyIsRefused) {
+  json tile = damping_tile({0.001, 0.001, 0.001, 0.001, 0.001});
+  tile["theta_max"] = -1.0;
+  const auto p = problem_of({{"position", {tile}}});
+  ASSERT_TRUE(p);
+  EXPECT_EQ(p->key, "position[0].theta_max");
+}
+
+// ---- in the loop ----
+
+TEST(Tiles, ASpringTileLoadedWhileIdleIsFeltOnEnteringRender) {
+  sim::PlantConfig plant = testing::plant_with("high-inertia");
+  plant.initial_angle = 0.5;
+  testing::CoreHarness h(plant);
+  h.set_render(0.0, 0.0);  // a model that renders nothing by itself
+  h.run(10);
+  auto set = std::make_unique<TileSet>();
+  model::PositionTile spring;
+  const std::vector<double> x = {-2.0, 2.0}, k = {0.05, 0.05};
+  spring.f_pos = model::CubicSpline(x, k);
+  spring.theta_min = -2.0;
+  spring.theta_max = 2.0;
+  set->position.push_back(spring);
+  ASSERT_TRUE(h.core().load_tiles(std::move(set)));
+  h.run(1);  // idle: taken, not rendered
+  EXPECT_FALSE(h.last_out.amp_enable);
+  h.command(CoreCommand::SetMode, Mode::Render);
+  const LoopRecord first = h.step();
+  const double tpv = h.core().config().limits.torque_per_volt;
+  // τ = f_pos(θ)·θ against the knob: the motor pushes with −τ.
+  EXPECT_NEAR(-first.sample.command * tpv, 0.05 * first.sample.theta, 2e-4) << "θ = " << first.sample.theta;
+  EXPECT_GT(first.sample.theta, 0.45);
+  ASSERT_TRUE(h.core().load_tiles(nullptr));
+  const LoopRecord cleared = h.step();
+  EXPECT_NEAR(cleared.sample.command, 0.0, 1e-3);
+}
+
+TEST(LoadTiles, TwoSetsInARowBothReachTheLoopAndGetStateCountsTheLoadedOne) {
+  DaemonConfig cfg;
+  cfg.core.rate_hz = 10000.0;
+  shared_host::configure(cfg);
+  Daemon d(cfg, std::make_unique<capture::SimDaq>(testing::plant_with("moderate-detents"), 10000.0),
+           std::make_unique<hal::MemoryLines>(false));
+  ControlHandler handler(d, {});
+  rt::LoopResult timing;
+  std::thread loop([&] { timing = d.run(); });
+
+  control::Request load;
+  load.command = control::Command::load_tiles;
+  load.args = {{"position", {damping_tile({0.001, 0.001, 0.002, 0.001, 0.001})}}};
+  control::Reply first = handler.handle(load);
+  ASSERT_TRUE(first.ok) << first.error.message;
+  load.args["time"] = {{{"duration", 0.5}, {"f_vel", {{"x", {0.0, 0.5}}, {"y", {0.0, 0.001}}}}}};
+  control::Reply second = handler.handle(load);  // at once: the loop must take the first meanwhile
+  ASSERT_TRUE(second.ok) << second.error.message;
+  EXPECT_EQ(second.result["position"], 1);
+  EXPECT_EQ(second.result["time"], 1);
+
+  control::Request state;
+  state.command = control::Command::get_state;
+  EXPECT_EQ(handler.handle(state).result["tiles"], (json{{"position", 1}, {"time", 1}}));
+  control::Request clear;
+  clear.command = control::Command::load_tiles;
+  clear.args = json::object();
+  ASSERT_TRUE(handler.handle(clear).ok);
+  EXPECT_EQ(handler.handle(state).result["tiles"], (json{{"position", 0}, {"time", 0}}));
+
+  load.args = {{"position", {damping_tile({0.0, 0.0, -0.001, 0.0, 0.0})}}};
+  control::Reply bad = handler.handle(load);
+  EXPECT_FALSE(bad.ok);
+  EXPECT_EQ(bad.error.code, control::ErrorCode::bad_args);
+  EXPECT_EQ(bad.error.key, "position[0].f_vel");
+  d.stop();
+  loop.join();
+  shared_host::report_timing(timing);
+}
+
+}  // namespace
+}  // namespace knoblab::hapticd
