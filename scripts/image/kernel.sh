@@ -89,7 +89,7 @@ if [ ! -f "$out/bzImage" ]; then
     "$version" "$key" "$recipe" "${fragments[*]##*/}" $(( $(now) - t1 )) "$cpu_s" $(( $(now) - t0 )) \
     "$(nproc)" "$(cut -d' ' -f1-3 /proc/loadavg)" >"$out.partial/build-info"
   log "kernel: bzImage built in $(took "$t1") ($(took "$t0") with unpacking and configuring);" \
-      "$((cpu_s / 60)) CPU-minutes, about $((cpu_s / 60 / $(nproc))) minutes on $(nproc) idle cores;" \
+      "$(awk -v s="$cpu_s" -v n="$(nproc)" 'BEGIN { printf "%.1f CPU-minutes, about %.1f minutes on %d idle cores", s / 60, s / 60 / n, n }');" \
       "load average now $(cut -d' ' -f1-3 /proc/loadavg)"
   rm -rf "$work"
   mv "$out.partial" "$out"
