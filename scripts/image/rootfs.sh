@@ -12,8 +12,9 @@
 # the directory.
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 [ $# -ge 1 ] && [ $# -le 2 ] || die "usage: rootfs.sh DEBS_DIR [MODULES_TAR]"
-debs=$1
-modules=${2:-}
+# Absolute paths: mmdebstrap takes only those (or ./…) for .deb files.
+debs=$(cd "$1" && pwd)
+modules=${2:+$(realpath "$2")}
 img=$repo/images/qemu
 root=$image_dir/rootfs
 
