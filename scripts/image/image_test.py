@@ -171,6 +171,9 @@ def run_checks(con, qemu, t0, args, report, check):
     con.send("stty -echo; PS1=''")
     rc, out = con.run("dmesg -n 1; uname -r")
     figures["kernel"] = out.strip()
+    # Where the boot's time went: "Startup finished in Xs (kernel) + Ys (userspace)".
+    rc, out = con.run("systemd-analyze time | head -1")
+    figures["systemd_analyze"] = out.strip()
 
     rc, out = con.run(f"{CTL} get_state")
     state = parse_json(out) if rc == 0 else None
