@@ -8,6 +8,7 @@ cut out between two markers. Checks, in order:
   ready         "appliance ready" appears on the console (boot-to-ready time)
   get_state     `knoblab ctl get_state` answers with the loop running, no fault
   loop_thread   hapticd's loop thread (knoblab-rt) is SCHED_FIFO, pinned to CPU 1
+  daq_modules   with daq.cfg's modules in the image: Comedi, IIO and counter load
   amp_enabled   render mode raises AMP_EN (read back from the gpio-sim line)
   estop         ESTOP_N pulled low latches hapticd's estop fault and drops AMP_EN
   estop_clear   released and cleared, the fault list is empty again
@@ -183,6 +184,7 @@ def run_checks(con, qemu, t0, args, report, check):
           f"modbus {state and state.get('modbus')}")
 
     check_loop_thread(con, report, check)
+    check_daq_modules(con, report, check)
     check_estop(con, report, check)
 
     rc, out = con.run("systemctl stop hapticd; systemctl show -P ExecMainStatus hapticd", timeout=60)
@@ -221,6 +223,18 @@ def check_loop_thread(con, report, check):
     detail = (f"{loop[0]['policy']} priority {loop[0]['rt_priority']}, CPUs {loop[0]['cpus_allowed']}"
               if loop else f"no knoblab-rt thread among {[t['name'] for t in threads]}")
     check("loop_thread", ok, detail)
+
+
+def check_daq_modules(con, report, check):
+    """A kernel built with daq.cfg has Comedi, IIO and counter as modules:
+    they must load (a kernel without modules skips this check)."""
+    rc, out = con.run("test -d /usr/lib/modules/$(uname -r) && echo yes || echo no")
+    if out.strip() != "yes":
+        return
+    rc, out = con.run("modprobe -a comedi industrialio counter && cut -d' ' -f1 /proc/modules | sort | tr '\\n' ' '")
+    report["modules_loaded"] = out.split()
+    check("daq_modules", rc == 0 and {"comedi", "industrialio", "counter"} <= set(out.split()),
+          f"modprobe exit {rc}, loaded: {out.strip()}")
 
 
 def check_estop(con, report, check):
