@@ -1,17 +1,19 @@
 #!/usr/bin/env bash
 # kernel.sh: the CI image's kernel, built from Debian 13's linux-source-6.12
 # (PREEMPT_RT is mainline there) on `make tinyconfig` + kernel-config/ci-base.cfg
-# + the fragments the Yocto image uses (rt, loop-core, sim-io), built in a
-# trixie chroot so the toolchain matches the rootfs. Prints the bzImage's path
-# on stdout; everything else goes to stderr.
+# (+ ci-modules.cfg) + the fragments the Yocto image uses (rt, loop-core,
+# sim-io, daq), built in a trixie chroot so the toolchain matches the rootfs.
+# Prints the bzImage's path on stdout; everything else goes to stderr.
 #
 # Cached under $KNOBLAB_CACHE/kernel/<key>/, the key a hash of the kernel
 # package's version, the fragments and the recipe below: a second call with
 # nothing changed prints the cached bzImage at once.
 #
-#   KNOBLAB_KERNEL_DAQ=1  also apply daq.cfg (Comedi, IIO, counter, PWM), with
-#                         ci-modules.cfg for its modules, which go into
-#                         modules.tar beside the bzImage (usr/lib/modules/…)
+# daq.cfg's Comedi, IIO and counter are modules; they go into modules.tar
+# beside the bzImage (usr/lib/modules/…) and from there into the image.
+#
+#   KNOBLAB_KERNEL_DAQ=0  leave out daq.cfg and ci-modules.cfg (about a tenth
+#                         less build time, no modules)
 #   KNOBLAB_KERNEL_BASE=defconfig  x86_64_defconfig + kvm_guest.config instead
 #                         of tinyconfig + ci-base.cfg (to compare build times)
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
@@ -23,7 +25,7 @@ case "$base" in
   defconfig) fragments=() ;;
   *) die "KNOBLAB_KERNEL_BASE is tiny or defconfig, not $base" ;;
 esac
-daq=${KNOBLAB_KERNEL_DAQ:-0}
+daq=${KNOBLAB_KERNEL_DAQ:-1}
 [ "$daq" = 1 ] && [ "$base" = tiny ] && fragments+=("$kc/ci-modules.cfg")
 fragments+=("$kc/rt.cfg" "$kc/loop-core.cfg" "$kc/sim-io.cfg")
 targets=bzImage
@@ -33,9 +35,11 @@ recipe="base=$base make=$targets v1"
 
 kroot=$(ensure_chroot kbuild "$repo/scripts/image/kernel-packages.txt")
 version=$(chroot "$kroot" dpkg-query -W -f='${Version}' linux-source-6.12)
+# Only the settings count: editing a comment rebuilds nothing.
 key=$( { echo "linux-source-6.12 $version"; echo "$recipe"
-         for f in "${fragments[@]}"; do echo "== ${f##*/}"; cat "$f"; done; } |
-       sha256sum | cut -c1-16)
+         for f in "${fragments[@]}"; do
+           echo "== ${f##*/}"; grep -E '^(CONFIG_|# CONFIG_.* is not set)' "$f" || true
+         done; } | sha256sum | cut -c1-16)
 out=$cache/kernel/$key
 if [ -f "$out/bzImage" ]; then
   log "kernel: cached ($out)"
