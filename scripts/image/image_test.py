@@ -22,6 +22,7 @@ import argparse
 import json
 import os
 import re
+import shutil
 import socket
 import subprocess
 import sys
@@ -134,6 +135,7 @@ def main():
         if qemu.poll() is None:
             qemu.kill()
             qemu.wait()
+        shutil.rmtree(tmp, ignore_errors=True)
     report["figures"]["qemu_exit_status"] = qemu.returncode
     report["build"] = build_figures(args.image_dir)
 
