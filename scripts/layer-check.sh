@@ -129,8 +129,16 @@ graph() {
   [ -f "$build/conf/local.conf" ] || { echo "kas wrote no configuration for $config"; return 1; }
   # Parsing only: nothing is fetched.
   printf 'BB_NO_NETWORK = "1"\nCONNECTIVITY_CHECK_URIS = ""\n' > "$build/conf/site.conf"
+  task_graph "$build" ". '$layers/poky/oe-init-build-env' . >/dev/null"
+}
+
+# `bitbake -g haptics-image` in build directory $1 as the unprivileged user,
+# after the shell setup $2 (what puts bitbake on the PATH); the task graph must
+# be written.
+task_graph() {
+  local build=$1 setup=$2
   chown -R "$bb_user:" "$build"
-  as_bb "cd '$build' && . '$layers/poky/oe-init-build-env' . >/dev/null &&
+  as_bb "cd '$build' && $setup &&
          rm -f task-depends.dot pn-buildlist && bitbake -g haptics-image" > "$build/graph.log" 2>&1 || {
     tail -40 "$build/graph.log"; return 1; }
   grep -E '^(Parsing of|NOTE: Resolving|WARNING|ERROR)' "$build/graph.log" | head -20 || true
@@ -150,13 +158,7 @@ step_graph_wrynose() {
     "$up/meta-openembedded/meta-oe" "$repo/meta-haptics" > "$build/conf/bblayers.conf"
   printf 'MACHINE = "qemux86-64"\nDISTRO = "knoblab"\nBB_NO_NETWORK = "1"\nCONNECTIVITY_CHECK_URIS = ""\n' \
     > "$build/conf/local.conf"
-  chown -R "$bb_user:" "$build"
-  as_bb "cd '$build' && export PATH='$up/bitbake/bin':\$PATH BBPATH='$build' &&
-         rm -f task-depends.dot pn-buildlist && bitbake -g haptics-image" > "$build/graph.log" 2>&1 || {
-    tail -40 "$build/graph.log"; return 1; }
-  grep -E '^(Parsing of|WARNING|ERROR)' "$build/graph.log" | head -20 || true
-  [ -s "$build/task-depends.dot" ] || { echo "no task graph written"; return 1; }
-  echo "$(wc -l < "$build/pn-buildlist") recipes in haptics-image's graph ($build/task-depends.dot)"
+  task_graph "$build" "export PATH='$up/bitbake/bin':\$PATH BBPATH='$build'"
 }
 
 step_check_layer() {

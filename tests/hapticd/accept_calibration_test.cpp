@@ -19,6 +19,7 @@
 #include "knoblab/hapticd/daemon.hpp"
 #include "knoblab/store/store.hpp"
 #include "shared_host.hpp"
+#include "temp_db.hpp"
 
 namespace knoblab::hapticd {
 namespace {
@@ -95,33 +96,26 @@ TEST(AcceptCalibration, AVerificationRunChangesNoConstant) {
 
 // ---- the calibration file ----
 
-struct TempDir {
-  std::filesystem::path path;
-  TempDir() {
-    std::string t = "/tmp/knoblab-accept-XXXXXX";
-    path = mkdtemp(t.data());
-  }
-  ~TempDir() { std::filesystem::remove_all(path); }
-};
+using testing::TempDb;
 
 TEST(CalibrationFile, WhatIsWrittenReadsBackAndATypoIsAnErrorNamingIt) {
-  TempDir dir;
+  TempDb dir("accept");
   CalibrationFile f;
   f.constants.C_cal = 1148.5;
   f.constants.grav_C = -0.25;
   f.accepted = {{"accel_gain", {{"unix_time", 1.7e9}}}};
-  write_calibration_file(dir.path / "cal.json", f);
-  const CalibrationFile back = read_calibration_file(dir.path / "cal.json");
+  write_calibration_file(dir.dir / "cal.json", f);
+  const CalibrationFile back = read_calibration_file(dir.dir / "cal.json");
   EXPECT_TRUE(back.constants == f.constants);
   EXPECT_EQ(back.accepted, f.accepted);
 
-  std::ofstream(dir.path / "typo.json") << R"({"counts_per_rev": 640000, "torque_Nm_per_V": 0.035,
+  std::ofstream(dir.dir / "typo.json") << R"({"counts_per_rev": 640000, "torque_Nm_per_V": 0.035,
       "torque_offset_V": 0, "C_call": 1148, "gravity": {"A": 0, "B": 1, "C": 0, "D": 0}})";
   try {
-    read_calibration_file(dir.path / "typo.json");
+    read_calibration_file(dir.dir / "typo.json");
     FAIL() << "a misspelt key was accepted";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("unknown key \"C_call\""), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("calibration.C_call: unknown key"), std::string::npos) << e.what();
   }
 }
 
@@ -144,7 +138,7 @@ void calibrate(ControlHandler& handler, Daemon& d, const char* kind, double swee
 }
 
 TEST(AcceptCalibrationDaemon, ThreeAccelGainRunsAcceptedChangeTheLoopTheStoreAndTheFile) {
-  TempDir dir;
+  TempDb dir("accept");
   capture::SensorCalibration truth;
   {
     auto daq = std::make_unique<capture::SimDaq>(testing::free_shaft(), 10000.0);
@@ -153,8 +147,8 @@ TEST(AcceptCalibrationDaemon, ThreeAccelGainRunsAcceptedChangeTheLoopTheStoreAnd
     cfg.core.rate_hz = 10000.0;
     cfg.core.calibration = truth;
     cfg.core.calibration.C_cal = 0.8 * truth.C_cal;  // an out-of-date constant
-    cfg.db = dir.path / "lab.sqlite";
-    cfg.calibration_file = dir.path / "calibration.json";
+    cfg.db = dir.dir / "lab.sqlite";
+    cfg.calibration_file = dir.dir / "calibration.json";
     shared_host::configure(cfg);
     Daemon d(cfg, std::move(daq), std::make_unique<hal::MemoryLines>(false));
     ControlHandler handler(d, {});
@@ -181,7 +175,7 @@ TEST(AcceptCalibrationDaemon, ThreeAccelGainRunsAcceptedChangeTheLoopTheStoreAnd
                 accepted.result["values"]["C_cal"]["runs"].size(), truth.C_cal, 0.8 * truth.C_cal);
     EXPECT_NEAR(C_cal, truth.C_cal, 0.05 * truth.C_cal);
     EXPECT_EQ(accepted.result["repetitions"], 3);
-    EXPECT_EQ(accepted.result["saved_to"], (dir.path / "calibration.json").string());
+    EXPECT_EQ(accepted.result["saved_to"], (dir.dir / "calibration.json").string());
     EXPECT_DOUBLE_EQ(d.sensor_calibration().C_cal, C_cal);
 
     control::Request state;
@@ -201,11 +195,11 @@ TEST(AcceptCalibrationDaemon, ThreeAccelGainRunsAcceptedChangeTheLoopTheStoreAnd
     shared_host::report_timing(timing);
   }
   // Later recordings are stored with the accepted constants.
-  store::Store st = store::Store::open(dir.path / "lab.sqlite");
+  store::Store st = store::Store::open(dir.dir / "lab.sqlite");
   const auto caps = st.list_captures();
   ASSERT_EQ(caps.size(), 5u);
   const double stored = json::parse(caps.back().calibration)["C_cal"].get<double>();
-  const CalibrationFile file = read_calibration_file(dir.path / "calibration.json");
+  const CalibrationFile file = read_calibration_file(dir.dir / "calibration.json");
   EXPECT_DOUBLE_EQ(stored, file.constants.C_cal);
   EXPECT_NEAR(file.constants.C_cal, truth.C_cal, 0.05 * truth.C_cal);
   EXPECT_TRUE(file.accepted.contains("accel_gain"));

@@ -3,7 +3,7 @@
 #include <array>
 #include <utility>
 
-#include "config_reader.hpp"
+#include "knoblab/hal/config_reader.hpp"
 #include "knoblab/hal/config_error.hpp"
 
 namespace knoblab::hal {

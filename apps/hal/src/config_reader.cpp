@@ -1,4 +1,4 @@
-#include "config_reader.hpp"
+#include "knoblab/hal/config_reader.hpp"
 
 #include <algorithm>
 #include <cmath>

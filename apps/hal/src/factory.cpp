@@ -3,7 +3,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "config_reader.hpp"
+#include "knoblab/hal/config_reader.hpp"
 #include "knoblab/capture/sim_daq.hpp"
 #include "knoblab/hal/comedi_daq.hpp"
 #include "knoblab/hal/gpiod_lines.hpp"

@@ -6,7 +6,7 @@
 #include <string>
 #include <utility>
 
-#include "config_reader.hpp"
+#include "knoblab/hal/config_reader.hpp"
 #include "knoblab/hal/config_error.hpp"
 #include "knoblab/modbus/register_map.hpp"
 

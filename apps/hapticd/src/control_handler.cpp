@@ -7,6 +7,7 @@
 #include <variant>
 
 #include "knoblab/hapticd/daemon.hpp"
+#include "short_number.hpp"
 #include "knoblab/hapticd/tiles_json.hpp"
 #include "knoblab/rt/timing_stats.hpp"
 #include "knoblab/modbus/status_bits.hpp"
@@ -18,6 +19,7 @@ namespace {
 using control::ErrorCode;
 using control::Reply;
 using nlohmann::json;
+using detail::short_number;
 
 json fault_names(std::uint32_t f) {
   json out = json::array();
@@ -125,14 +127,6 @@ RenderParams render_params_from_args(const json& a, RenderParams base, bool part
   p.B_vm = get(a, "B_vm", p.B_vm);
   return p;
 }
-
-namespace {
-std::string short_number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", v);
-  return buf;
-}
-}  // namespace
 
 std::optional<ParamProblem> render_params_problem(const RenderParams& p, const SafetyLimits& limits) {
   const std::pair<const char*, double> values[] = {{"M_acc", p.M_acc}, {"B_vel", p.B_vel}, {"A_pos", p.A_pos},

@@ -10,10 +10,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "short_number.hpp"
+
 namespace knoblab::hapticd {
 
 namespace {
 
+using detail::short_number;
 using nlohmann::json;
 using model::CubicSpline;
 
@@ -26,12 +29,6 @@ struct Bad {
 };
 
 [[noreturn]] void fail(const std::string& key, const std::string& message) { throw Bad{{key, key + ": " + message}}; }
-
-std::string short_number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", v);
-  return buf;
-}
 
 CubicSpline spline_from(const json& j, const std::string& key) {
   const auto x = j.at("x").get<std::vector<double>>();

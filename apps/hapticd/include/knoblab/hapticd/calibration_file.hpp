@@ -23,7 +23,8 @@ struct CalibrationFile {
   nlohmann::json accepted = nlohmann::json::object();  // kind → accept record
 };
 
-// Throws std::runtime_error naming the file and the problem.
+// Throws hal::ConfigError (a std::runtime_error) naming the file or the key
+// ("calibration.gravity.B: …") and the problem.
 CalibrationFile read_calibration_file(const std::filesystem::path& path);
 void write_calibration_file(const std::filesystem::path& path, const CalibrationFile& file);
 
