@@ -127,9 +127,25 @@ graph() {
   (cd "$repo" && KAS_WORK_DIR=$work/kas KAS_BUILD_DIR=$build \
      "$venv/bin/kas" checkout --skip repos_checkout "$config" 2>&1 | grep -v ' - INFO ' || true)
   [ -f "$build/conf/local.conf" ] || { echo "kas wrote no configuration for $config"; return 1; }
-  # Parsing only: nothing is fetched.
-  printf 'BB_NO_NETWORK = "1"\nCONNECTIVITY_CHECK_URIS = ""\n' > "$build/conf/site.conf"
+  # Parsing only: nothing is fetched. externalsrc hashes the whole source
+  # tree when it cannot use git (the checkout is root's, not the bitbake
+  # user's), build/ and its image rootfs included: parse a copy of the tracked
+  # files instead.
+  printf 'BB_NO_NETWORK = "1"\nCONNECTIVITY_CHECK_URIS = ""\nKNOBLAB_CHECKOUT = "%s"\n' \
+    "$(tracked_tree)" > "$build/conf/site.conf"
   task_graph "$build" ". '$layers/poky/oe-init-build-env' . >/dev/null"
+}
+
+# The checkout's tracked files (as they are in the working tree) copied to
+# $work/src, made once per run; prints the directory.
+tracked_tree() {
+  local src=$work/src
+  if [ ! -f "$src/.made-$$" ]; then
+    rm -rf "$src" && mkdir -p "$src"
+    (cd "$repo" && git ls-files -z | tar --null --ignore-failed-read -T - -cf - 2>/dev/null) | tar -xf - -C "$src"
+    touch "$src/.made-$$"
+  fi
+  echo "$src"
 }
 
 # `bitbake -g haptics-image` in build directory $1 as the unprivileged user,

@@ -137,7 +137,8 @@ SimulationResult simulate(const SimulationRequest& request, store::Store* db) {
     cap.alpha.push_back(s.alpha);
     cap.torque.push_back(s.torque);
     cap.command.push_back(s.command);
-    const double e = r.stimulus.theta(s.t) - s.theta;
+    // The capture centres the sweep where the knob stood at its first sample.
+    const double e = cap.theta.front() + r.stimulus.theta(s.t) - s.theta;
     sq_err += e * e;
     result.max_command_V = std::max(result.max_command_V, std::abs(s.command));
     if (writer) writer->append(s);

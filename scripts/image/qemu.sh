@@ -8,6 +8,8 @@
 #
 #   KNOBLAB_QEMU_CONSOLE=unix:PATH  serial console on a unix socket that QEMU
 #                                   listens on and waits for (the image test)
+#   KNOBLAB_QEMU_STORE=FILE         the store disk, instead of the image's
+#                                   store.img (the image test boots a copy)
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 for f in bzImage cmdline root.img store.img; do
   [ -f "$image_dir/$f" ] || die "qemu: no $image_dir/$f; run ./run image first"
@@ -27,6 +29,6 @@ exec qemu-system-x86_64 \
   -machine q35 -accel tcg,thread=multi -cpu max -smp 2 -m 1024 \
   -kernel "$image_dir/bzImage" -append "$(cat "$image_dir/cmdline")" \
   -drive "file=$image_dir/root.img,format=raw,if=virtio,readonly=on" \
-  -drive "file=$image_dir/store.img,format=raw,if=virtio" \
+  -drive "file=${KNOBLAB_QEMU_STORE:-$image_dir/store.img},format=raw,if=virtio" \
   -device virtio-rng-pci -nic none -no-reboot \
   "${io[@]}" "$@"

@@ -15,10 +15,11 @@ struct Recording {
   std::vector<Sample> samples;
 };
 
-Recording run(CaptureConfig cfg, const char* knob, sim::Load load, int cycles) {
+Recording run(CaptureConfig cfg, const char* knob, sim::Load load, int cycles, double start_rad = 0.0) {
   sim::PlantConfig p;
   p.knob = *sim::presets::knob(knob);
   p.load = load;
+  p.initial_angle = start_rad;
   SimDaq daq(p, cfg.rate_hz);
   SensorConfig sc;
   sc.rate_hz = cfg.rate_hz;
@@ -44,6 +45,19 @@ TEST(CaptureController, PositionStimulusIsTrackedByThePid) {
   double worst = 0;
   for (const Sample& s : r.samples) worst = std::max(worst, std::abs(cfg.stimulus.theta(s.t) - s.theta));
   EXPECT_LT(worst, 0.01);  // rad, over 3 s of the Table 3 sweep
+}
+
+TEST(CaptureController, APositionSweepIsCentredWhereTheKnobStandsAtTheStart) {
+  CaptureConfig cfg;
+  const double start = 2.5;  // rad, where an earlier capture left it
+  const Recording r = run(cfg, "subtle-detents", sim::Load::Knob, 15000, start);
+  double worst = 0, fastest = 0;
+  for (const Sample& s : r.samples) {
+    worst = std::max(worst, std::abs(start + cfg.stimulus.theta(s.t) - s.theta));
+    fastest = std::max(fastest, std::abs(s.omega));
+  }
+  EXPECT_LT(worst, 0.01);   // rad: no jump to the sweep's absolute zero
+  EXPECT_LT(fastest, 5.0);  // rad/s: the sweep alone, no fling back to zero
 }
 
 TEST(CaptureController, TorqueStimulusIsAppliedOpenLoop) {

@@ -98,6 +98,24 @@ TEST(Recorder, ARecordingDuringWhichAFaultLatchedIsStoredIncompleteWithTheFault)
   EXPECT_EQ(clean->sample_count, 200);
 }
 
+// A slow loop fills a batch slowly (2000 samples are 8 s at 250 Hz): the
+// recorder commits on time as well, so a power cut loses little of it.
+TEST(Recorder, ARecordingIsCommittedEveryCommitIntervalNotOnlyInFullBatches) {
+  TempDb db{"recorder"};
+  store::Store s = store::Store::open(db.path());
+  RecorderOptions options;
+  options.commit_interval_s = 0.00995;  // 99.5 cycles of the 10 kHz records
+  Recorder rec(&s, defaults(), options);
+  feed(rec, 0, 350, 1);  // still recording: 350 samples, 0.035 s
+
+  const auto info = reader(db).capture_info(1);
+  ASSERT_TRUE(info.has_value());
+  EXPECT_EQ(info->status, "recording");
+  // Commits at 101, 202 and 303 samples (each once its newest sample is 100
+  // cycles after the oldest uncommitted one); the last 47 wait for the next.
+  EXPECT_EQ(info->sample_count, 303);
+}
+
 TEST(Recorder, ARingDropWhileNotRecordingDoesNotMarkTheNextRecordingIncomplete) {
   TempDb db{"recorder"};
   store::Store s = store::Store::open(db.path());

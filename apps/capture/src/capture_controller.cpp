@@ -20,7 +20,11 @@ void CaptureController::update(const SensorReading& in, DaqOutputs& out, Sample&
     s.command = std::clamp(cfg_.torque_stimulus.torque(t) / cfg_.torque_per_volt, -cfg_.pid.limit_V,
                            cfg_.pid.limit_V);
   } else {
-    const double ref = cfg_.stimulus.theta(t);
+    // The sweep is centred where the knob stands when the capture starts:
+    // an absolute reference would first throw the knob back to zero as hard
+    // as the PID can (and trip the velocity limit at a slow loop's gains).
+    if (cycle_ == 0) theta0_ = in.theta;
+    const double ref = theta0_ + cfg_.stimulus.theta(t);
     const double ref_omega = cfg_.stimulus.omega(t);
     s.command = pid_.update(ref, ref_omega, s.theta, s.omega, dt);
   }

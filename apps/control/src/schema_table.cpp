@@ -114,7 +114,7 @@ constexpr ObjectSchema kSweptSine{kSweptSineArgs, {}};
 constexpr ObjectSchema kTorqueSweep{kTorqueSweepArgs, {}};
 constexpr ObjectSchema kPid{kPidArgs, {}};
 constexpr std::array kCaptureArgs = {
-    object("swept_sine", kOptional, &kSweptSine, "position stimulus θ = c·sin φ(t), Eq. 8"),
+    object("swept_sine", kOptional, &kSweptSine, "position stimulus θ = θ₀ + c·sin φ(t), Eq. 8, about the start angle θ₀"),
     object("torque_sweep", kOptional, &kTorqueSweep, "torque stimulus τ = c·sin φ(t)"),
     object("pid", kOptional, &kPid, "position controller gains (Eq. 4)"),
     number("seconds", kRequired, 0.01, 3600, "s", "capture length"),

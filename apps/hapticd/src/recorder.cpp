@@ -203,6 +203,7 @@ void Recorder::pump() {
       std::size_t n = 0;
       while (!rec.samples.empty()) {
         const std::int64_t before = rec.writer->appended();
+        const double t = rec.samples.front().t;
         try {
           rec.writer->append(rec.samples.front());
         } catch (const std::invalid_argument& e) {
@@ -220,6 +221,9 @@ void Recorder::pump() {
         }
         rec.samples.pop_front();
         --queued_;
+        const std::int64_t held = rec.writer->appended() - rec.writer->committed();
+        if (held == 1) rec.uncommitted_t = t;
+        if (held > 0 && t - rec.uncommitted_t >= options_.commit_interval_s) rec.writer->flush();
         if (++n % 256 == 0 && std::chrono::steady_clock::now() > until) {
           update_stats();
           return;

@@ -1,5 +1,5 @@
-// Capture mode: drive the knob along the swept sine of thesis Eq. 8 with the
-// PID of Eq. 4 (position stimulus), or push it with a swept-sine torque open
+// Capture mode: drive the knob along the swept sine of thesis Eq. 8, centred
+// where the knob stands at the start, with the PID of Eq. 4 (position stimulus), or push it with a swept-sine torque open
 // loop (torque stimulus), and turn each cycle's raw readings into a Sample.
 // Runs inside the loop: construction allocates, update() never does.
 #pragma once
@@ -37,6 +37,7 @@ class CaptureController {
   CaptureConfig cfg_;
   Pid pid_;
   long long cycle_ = 0;
+  double theta0_ = 0.0;  // rad, where the knob stood at the first cycle
 };
 
 }  // namespace knoblab::capture
