@@ -5,6 +5,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "knoblab/interchange/atomic_file.hpp"
 #include "knoblab/interchange/csv.hpp"
 
 namespace knoblab::cli {
@@ -61,9 +62,9 @@ void write_text(const std::string& path, const std::string& text) {
     std::fputc('\n', stdout);
     return;
   }
-  std::ofstream f(path, std::ios::binary | std::ios::trunc);
-  f << text << "\n";
-  if (!f.flush()) throw std::runtime_error("cannot write " + path);
+  // A killed process or a full disk must not leave a half-written result in
+  // place of the last good one (a truncated render model stops hapticd).
+  interchange::write_file_atomically(path, text + "\n");
 }
 
 }  // namespace knoblab::cli

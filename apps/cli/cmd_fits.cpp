@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "knoblab/interchange/atomic_file.hpp"
 #include "knoblab/store/store.hpp"
 
 namespace knoblab::cli {
@@ -74,10 +75,7 @@ bool plain_file_name(const std::string& name) {
 }
 
 void write_bytes(const std::filesystem::path& path, const void* data, std::size_t size) {
-  std::ofstream f(path, std::ios::binary | std::ios::trunc);
-  if (!f) throw std::runtime_error("cannot create " + path.string());
-  f.write(static_cast<const char*>(data), static_cast<std::streamsize>(size));
-  if (!f.flush()) throw std::runtime_error("cannot write " + path.string());
+  interchange::write_file_atomically(path, std::string_view(static_cast<const char*>(data), size));
 }
 
 }  // namespace

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -15,6 +14,7 @@
 
 #include "knoblab/discovery/whiteness.hpp"
 #include "knoblab/fit/plplot_shared.hpp"
+#include "knoblab/interchange/atomic_file.hpp"
 #include "knoblab/model/quantile.hpp"
 #include "report_plot.hpp"
 #include "report_summary.hpp"
@@ -255,16 +255,19 @@ std::vector<fs::path> write_discrepancy_report(const fs::path& dir, const fit::F
     for (const auto& [stem, page] : pages) {
       for (const bool svg : {false, true}) {
         const fs::path file = dir / (std::string(stem) + (svg ? ".svg" : ".png"));
-        plot::render(page, file, svg, opt.width_px, opt.height_px);
+        fit::write_plot_file(file, svg, [&](const fs::path& tmp) {
+          plot::render(page, tmp, svg, opt.width_px, opt.height_px);
+        });
         written.push_back(file);
       }
     }
   }
   const fs::path md = dir / "summary.md";
-  std::ofstream out(md, std::ios::binary);
-  out << detail::summary_markdown(opt.title, text);
-  out.close();
-  if (!out) throw std::runtime_error(std::string(kWho) + "cannot write " + md.string());
+  try {
+    interchange::write_file_atomically(md, detail::summary_markdown(opt.title, text));
+  } catch (const std::system_error& e) {
+    throw std::runtime_error(std::string(kWho) + e.what());
+  }
   written.push_back(md);
   return written;
 }

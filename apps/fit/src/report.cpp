@@ -858,10 +858,9 @@ std::vector<fs::path> write_report(const FitResult& r, const FitData& data, cons
   for (const auto& [stem, page] : pages) {
     for (const bool svg : {false, true}) {
       const fs::path file = dir / (std::string(stem) + (svg ? ".svg" : ".png"));
-      render(page, file, svg ? "svgcairo" : "pngcairo", svg, opt);
-      std::error_code size_ec;
-      const auto size = fs::file_size(file, size_ec);
-      if (size_ec || size == 0) fail(file, size_ec ? size_ec.message() : "PLplot wrote nothing");
+      write_plot_file(file, svg, [&](const fs::path& tmp) {
+        render(page, tmp, svg ? "svgcairo" : "pngcairo", svg, opt);
+      });
       written.push_back(file);
     }
   }

@@ -4,6 +4,8 @@
 // (type scale, pen, the title lines).
 #pragma once
 
+#include <filesystem>
+#include <functional>
 #include <mutex>
 #include <string>
 
@@ -11,6 +13,14 @@ namespace knoblab::fit {
 
 // Held while a PLplot stream is open, by every report.
 std::mutex& plplot_mutex();
+
+// One plot file, replaced whole or not at all: `draw` renders into the
+// temporary path it is given, which becomes `file` only once it holds a whole
+// PNG (up to its IEND chunk) or SVG (up to </svg>). PLplot's cairo driver
+// reports no write errors, so a full disk would otherwise leave half a plot
+// in place of the last good one. Throws std::runtime_error naming the file.
+void write_plot_file(const std::filesystem::path& file, bool svg,
+                     const std::function<void(const std::filesystem::path& temporary)>& draw);
 
 // PLplot's escape character '#' doubled, so text is shown as written.
 std::string plplot_escape(const std::string& s);
