@@ -7,6 +7,7 @@
 
 #include "knoblab/interchange/atomic_file.hpp"
 #include "knoblab/interchange/csv.hpp"
+#include "store_open.hpp"
 
 namespace knoblab::cli {
 
@@ -21,7 +22,7 @@ std::optional<CaptureInput> read_from(const Args& args, const std::string& file_
     in.capture = interchange::read_csv(*input);
     in.title = std::filesystem::path(*input).filename().string();
   } else if (auto id = args.get(id_key)) {
-    in.db.emplace(store::Store::open(args.require("db")));
+    in.db.emplace(open_store_to_add(args.require("db")));
     in.capture_id = std::stoll(*id);
     const auto info = in.db->capture_info(*in.capture_id);
     if (!info) throw std::runtime_error("no capture " + *id + " in the store");

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "store_open.hpp"
 #include "knoblab/interchange/atomic_file.hpp"
 #include "knoblab/store/store.hpp"
 
@@ -83,7 +84,7 @@ void write_bytes(const std::filesystem::path& path, const void* data, std::size_
 int run_fits(const Args& args) {
   std::optional<std::int64_t> capture;
   if (auto c = args.get("capture")) capture = id_arg("--capture", *c);
-  store::Store db = store::Store::open(args.require("db"));
+  store::Store db = open_store_to_read(args.require("db"));
   if (capture && !db.capture_info(*capture))
     throw std::runtime_error("no capture " + std::to_string(*capture) + " in the store");
   const auto fits = capture ? db.list_fits(*capture) : db.list_all_fits();
@@ -108,7 +109,7 @@ int run_fit_export(const Args& args) {
   if (!json_out && !report_dir) throw UsageError("give --json OUT (or -) and/or --report DIR");
   if (json_out && json_out->empty()) throw UsageError("--json needs a file name or '-'");
   if (report_dir && report_dir->empty()) throw UsageError("--report needs a directory");
-  store::Store db = store::Store::open(args.require("db"));
+  store::Store db = open_store_to_read(args.require("db"));
 
   // Everything is read and checked before anything is written.
   const auto fit = db.fit_info(id);

@@ -6,6 +6,7 @@
 #include "commands.hpp"
 #include "knoblab/interchange/csv.hpp"
 #include "knoblab/store/store.hpp"
+#include "store_open.hpp"
 #include "summary.hpp"
 
 namespace knoblab::cli {
@@ -28,7 +29,7 @@ int run_inspect(const Args& args) {
     capture = interchange::read_csv(name);
   } else {
     const std::string id = args.require("capture");
-    store::Store db = store::Store::open(args.require("db"));
+    store::Store db = open_store_to_read(args.require("db"));
     capture = db.load_samples(std::stoll(id));
     name = "capture " + id;
   }

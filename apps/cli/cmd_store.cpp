@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "store_open.hpp"
 #include "knoblab/interchange/csv.hpp"
 #include "knoblab/store/store.hpp"
 
@@ -62,14 +63,6 @@ store::NewCapture describe_import(const interchange::Capture& capture, const Arg
   return info;
 }
 
-// list and export only read: they must answer while hapticd or an import
-// holds the write lock.
-store::OpenOptions read_only() {
-  store::OpenOptions o;
-  o.read_only = true;
-  return o;
-}
-
 std::int64_t capture_id_arg(const std::string& text) {
   std::int64_t id = 0;
   auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), id);
@@ -97,7 +90,7 @@ int run_import(const Args& args) {
 int run_export(const Args& args) {
   const std::int64_t id = capture_id_arg(args.positionals().at(0));
   const std::string out = args.require("out");
-  store::Store db = store::Store::open(args.require("db"), read_only());
+  store::Store db = open_store_to_read(args.require("db"));
   if (!db.capture_info(id)) throw std::runtime_error("no capture " + std::to_string(id) + " in the store");
   const interchange::Capture capture = db.load_samples(id);
   interchange::write_csv(capture, std::filesystem::path(out));
@@ -107,7 +100,7 @@ int run_export(const Args& args) {
 }
 
 int run_list(const Args& args) {
-  store::Store db = store::Store::open(args.require("db"), read_only());
+  store::Store db = open_store_to_read(args.require("db"));
   std::printf("%6s  %-20s %-7s %-10s %9s %9s  %-24s  %s\n", "id", "knob", "mode", "status",
               "samples", "rate Hz", "started", "why incomplete");
   for (const auto& c : db.list_captures())

@@ -71,6 +71,8 @@ Store Store::open(const std::filesystem::path& path, const OpenOptions& options)
       throw StoreError(path.string() + ": " + what, e.sqlite_code());
     }
   }
+  if (!options.create && !std::filesystem::exists(path))
+    throw StoreError(path.string() + ": no such store (give the path of an existing one)");
   auto db = std::make_shared<sqlite::Connection>(sqlite::Connection::open(path));
   try {
     db->set_busy_timeout(options.busy_timeout_ms);

@@ -40,6 +40,9 @@ struct OpenOptions {
   // exist; one with an older schema is first upgraded by a brief read-write
   // open. No recovery.
   bool read_only = false;
+  // false: a missing file is an error ("no such store"), not a new empty
+  // store (a command that adds to an existing store, e.g. a fit of a capture).
+  bool create = true;
 };
 
 struct ImportOptions {
