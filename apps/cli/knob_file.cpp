@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "knoblab/model/models.hpp"
 
@@ -21,12 +22,68 @@ double number(const json& obj, const std::string& key, std::string_view where, d
   return v.get<double>();
 }
 
-void reject_unknown(const json& obj, std::initializer_list<std::string_view> known, std::string_view where) {
+void reject_unknown(const json& obj, const std::vector<std::string_view>& known, std::string_view where) {
   for (const auto& [key, value] : obj.items()) {
     bool ok = false;
     for (auto k : known) ok = ok || key == k;
-    if (!ok) throw std::invalid_argument(std::string(where) + ": unknown parameter '" + key + "'");
+    if (ok) continue;
+    std::string list;
+    for (auto k : known) list += (list.empty() ? "" : ", ") + std::string(k);
+    throw std::invalid_argument(std::string(where) + ": unknown parameter '" + key + "' (known: " + list + ")");
   }
+}
+
+// The stick band's three values; the fit also writes how many samples it
+// saw in the band, which describes the capture, not the knob.
+model::KarnoppStick<double> stick_band(const json& s, const std::string& where) {
+  reject_unknown(s, {"dv", "D_neg", "D_pos", "samples"}, where);
+  return {number(s, "dv", where, 0.0), number(s, "D_neg", where, 0.0), number(s, "D_pos", where, 0.0)};
+}
+
+sim::KnobParams from_thesis6(const json& doc, const std::string& where) {
+  const json& p = doc.at("params");
+  std::vector<std::string_view> names(model::kThesisParamNames.begin(), model::kThesisParamNames.end());
+  reject_unknown(p, names, where + ": params");
+  double v[model::kThesisParamCount];
+  for (std::size_t i = 0; i < model::kThesisParamCount; ++i) {
+    const std::string key(model::kThesisParamNames[i]);
+    v[i] = number(p, key, where, i == model::kP_pos ? 1.0 : 0.0);
+  }
+  const auto m = model::ThesisModel<double>::from_params(v);
+  sim::KnobParams k;
+  k.inertia = m.inertia;
+  k.friction = m.friction;
+  k.detents = m.detents;
+  if (doc.contains("stick") && !doc.at("stick").is_null()) {
+    if (!doc.at("stick").is_object()) throw std::invalid_argument(where + ": \"stick\" must be an object or null");
+    k.stick = stick_band(doc.at("stick"), where + ": stick");
+  }
+  return k;
+}
+
+// Eq. 14: one symmetric viscous term and no Coulomb level; the stick band
+// sits with the parameters, as hapticd's load_model takes them.
+sim::KnobParams from_render4(const json& doc, const std::string& where) {
+  const json& p = doc.at("params");
+  reject_unknown(p, {"M_acc", "B_vel", "A_pos", "P_pos", "S_pos", "dv", "D_neg", "D_pos"}, where + ": params");
+  const double B = number(p, "B_vel", where, 0.0);
+  double v[model::kThesisParamCount] = {};
+  v[model::kM_acc] = number(p, "M_acc", where, 0.0);
+  v[model::kB_vel_neg] = B;
+  v[model::kB_vel_pos] = B;
+  v[model::kA_pos] = number(p, "A_pos", where, 0.0);
+  v[model::kP_pos] = number(p, "P_pos", where, 1.0);
+  v[model::kS_pos] = number(p, "S_pos", where, 0.0);
+  const auto m = model::ThesisModel<double>::from_params(v);
+  sim::KnobParams k;
+  k.inertia = m.inertia;
+  k.friction = m.friction;
+  k.detents = m.detents;
+  json band = json::object();
+  for (const char* key : {"dv", "D_neg", "D_pos"})
+    if (p.contains(key)) band[key] = p.at(key);
+  k.stick = stick_band(band, where + ": params");
+  return k;
 }
 
 }  // namespace
@@ -41,30 +98,12 @@ sim::KnobParams parse_knob_json(std::string_view text, std::string_view source) 
   const std::string where(source);
   if (!doc.is_object() || !doc.contains("params") || !doc.at("params").is_object())
     throw std::invalid_argument(where + ": expected an object with a \"params\" object");
-  if (doc.contains("model") && doc.at("model") != "thesis6")
-    throw std::invalid_argument(where + ": model '" + doc.at("model").dump() + "' is not 'thesis6'");
-
-  const json& p = doc.at("params");
-  std::initializer_list<std::string_view> names = {"M_acc", "C_vel_neg", "B_vel_neg", "C_vel_pos",
-                                                   "B_vel_pos", "A_pos", "P_pos", "S_pos"};
-  reject_unknown(p, names, where + ": params");
-  double v[model::kThesisParamCount];
-  for (std::size_t i = 0; i < model::kThesisParamCount; ++i) {
-    const std::string key(model::kThesisParamNames[i]);
-    v[i] = number(p, key, where, i == model::kP_pos ? 1.0 : 0.0);
-  }
-  const auto m = model::ThesisModel<double>::from_params(v);
-  sim::KnobParams k;
-  k.inertia = m.inertia;
-  k.friction = m.friction;
-  k.detents = m.detents;
-  if (doc.contains("stick")) {
-    const json& s = doc.at("stick");
-    if (!s.is_object()) throw std::invalid_argument(where + ": \"stick\" must be an object");
-    reject_unknown(s, {"dv", "D_neg", "D_pos"}, where + ": stick");
-    k.stick = {number(s, "dv", where, 0.0), number(s, "D_neg", where, 0.0), number(s, "D_pos", where, 0.0)};
-  }
-  return k;
+  const std::string model = doc.contains("model") && doc.at("model").is_string() ? doc.at("model").get<std::string>()
+                            : doc.contains("model")                              ? doc.at("model").dump()
+                                                                                 : "thesis6";
+  if (model == "thesis6") return from_thesis6(doc, where);
+  if (model == "render4") return from_render4(doc, where);
+  throw std::invalid_argument(where + ": model '" + model + "' is neither 'thesis6' nor 'render4'");
 }
 
 sim::KnobParams read_knob_file(const std::filesystem::path& path) {

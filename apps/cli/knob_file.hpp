@@ -1,10 +1,18 @@
 // Knob parameters from a JSON file, so a fitted or hand-designed knob can be
-// simulated. The format is the fit's output (SI units, thesis Eq. 6 names):
+// simulated. The formats are the fit's own (SI units, docs/fit.md): its
+// result JSON (`knoblab fit --json`) and its render-model file
+// (`--render-model`), read as they are written:
 //   {"model": "thesis6",
 //    "params": {"M_acc": …, "C_vel_neg": …, "B_vel_neg": …, "C_vel_pos": …,
 //               "B_vel_pos": …, "A_pos": …, "P_pos": …, "S_pos": …},
-//    "stick": {"dv": …, "D_neg": …, "D_pos": …}}          (optional, Eq. 7)
-// Missing parameters are zero (P_pos defaults to 1); unknown ones are errors.
+//    "stick": {"dv": …, "D_neg": …, "D_pos": …} or null}     (Eq. 7, optional)
+//   {"model": "render4",
+//    "params": {"M_acc": …, "B_vel": …, "A_pos": …, "P_pos": …,
+//               "dv": …, "D_neg": …, "D_pos": …}}           (Eq. 14)
+// A file without "model" is thesis6. Missing parameters are zero (P_pos
+// defaults to 1); an unknown parameter is an error that lists the known
+// ones. The result's figures beside the parameters (ci95, se, detents, rmse,
+// stick.samples, …) are not parameters and are ignored.
 #pragma once
 
 #include <filesystem>

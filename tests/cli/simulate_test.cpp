@@ -152,6 +152,28 @@ TEST(Simulate, ParamsFileGivesTheSameKnobAsThePreset) {
   EXPECT_NE(r.err.find("not valid JSON"), std::string::npos) << r.err;
 }
 
+// The loop closes: what fit writes, simulate reads, as it is written.
+TEST(Simulate, ParamsTakesAFitsResultJsonAndItsRenderModelAsWritten) {
+  ScratchDir dir;
+  const auto csv = (dir / "a.csv").string();
+  ASSERT_EQ(run_knoblab({"simulate", "--knob", "moderate-detents", "--seconds", "3", "--out", csv}).exit_code, 0);
+  const auto fit_json = (dir / "fit.json").string(), render = (dir / "render.json").string();
+  const RunResult fit = run_knoblab({"fit", "--input", csv, "--json", fit_json, "--render-model", render});
+  ASSERT_EQ(fit.exit_code, 0) << fit.err;
+  ASSERT_NE(read_file(fit_json).find("\"stick\""), std::string::npos);  // with its samples count
+  for (const auto& file : {fit_json, render}) {
+    const RunResult r = run_knoblab({"simulate", "--params", file, "--seconds", "1", "--out", (dir / "b.csv").string()});
+    EXPECT_EQ(r.exit_code, 0) << file << ": " << r.err;
+  }
+
+  write_file(dir / "bad.json", "{\"model\": \"render4\", \"params\": {\"M_acc\": 1e-5, \"C_vel_pos\": 1e-3}}");
+  const RunResult r = run_knoblab({"simulate", "--params", (dir / "bad.json").string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("unknown parameter 'C_vel_pos' (known: M_acc, B_vel, A_pos, P_pos, S_pos, dv, D_neg, D_pos)"),
+            std::string::npos)
+      << r.err;
+}
+
 // 60 s at 10 kHz through the loop into the store: every sample arrives.
 TEST(Simulate, SixtySecondsAtTenKilohertzLoseNothing) {
   ScratchDir dir;
