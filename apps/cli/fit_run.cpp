@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "knoblab/fit/physical_checks.hpp"
+
 namespace knoblab::cli {
 
 FitRun fit_capture(const interchange::Capture& capture, const fit::PrepOptions& prep,
@@ -60,6 +62,7 @@ void print_fit(std::FILE* out, const fit::FitResult& r) {
   }
   std::fprintf(out, "rmse %.4g mN·m, fit %.2f %%, BIC %.6g, 95%% CI of the torque %.4g mN·m\n",
                r.rmse_Nm * 1e3, r.fit_percent, r.bic, r.ci95_torque_Nm * 1e3);
+  for (const std::string& w : fit::physical_warnings(r)) std::fprintf(out, "warning: %s\n", w.c_str());
 }
 
 }  // namespace knoblab::cli

@@ -2,6 +2,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "knoblab/fit/physical_checks.hpp"
+
 namespace knoblab::fit {
 
 std::string to_json(const FitResult& r, int indent) {
@@ -44,6 +46,7 @@ std::string to_json(const FitResult& r, int indent) {
   j["outliers"] = r.outliers;
   j["iterations"] = r.iterations;
   j["seconds"] = r.seconds;
+  j["warnings"] = physical_warnings(r);
   return j.dump(indent);
 }
 
