@@ -312,3 +312,22 @@ TEST(CsvError, MissingFile) {
     EXPECT_THAT(std::string(e.what()), HasSubstr("/nonexistent/k.csv: cannot open"));
   }
 }
+
+namespace {
+
+TEST(CsvMagnitude, AFiniteButHugeValueIsRefusedWithItsLineAndColumn) {
+  const Caught c = parse_error(kHeader + "0,0,0\n0.001,1e300,0\n0.002,0,0\n");
+  EXPECT_EQ(c.line, 3u);
+  EXPECT_EQ(c.column, 2u);
+  EXPECT_THAT(c.what, HasSubstr("column 'theta': \"1e300\" is beyond ±1e12"));
+}
+
+TEST(CsvMagnitude, ADerivedChannelThatOverflowsNamesTheLineAndWhereItCameFrom) {
+  // Finite, in range and increasing, but 1e-290 s apart: θ̇ = 1/1e-290.
+  const Caught c = parse_error(kHeader + "0,0,0\n1e-290,1,0\n1,2,0\n2,3,0\n");
+  EXPECT_GE(c.line, 2u);
+  EXPECT_LE(c.line, 3u);
+  EXPECT_THAT(c.what, HasSubstr("omega (not in the file, derived from theta and t) is beyond ±1e12"));
+}
+
+}  // namespace

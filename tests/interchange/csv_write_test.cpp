@@ -20,11 +20,12 @@ using ::testing::HasSubstr;
 
 namespace {
 
-// A finite double from random bits: every exponent and mantissa gets a turn.
+// A double from random bits within the format's ±1e12: every exponent up to
+// that and every mantissa gets a turn.
 double random_finite(std::mt19937_64& rng) {
   for (;;) {
     const double d = std::bit_cast<double>(rng());
-    if (std::isfinite(d)) return d;
+    if (std::isfinite(d) && std::abs(d) <= ki::kMaxMagnitude) return d;
   }
 }
 
@@ -46,8 +47,8 @@ ki::Capture random_capture(std::size_t n, bool command) {
   // Edge values that shortest-form printing must still get exactly right.
   const double edges[] = {-0.0, 0.0, std::numeric_limits<double>::denorm_min(),
                           -std::numeric_limits<double>::denorm_min(),
-                          std::numeric_limits<double>::min(), std::numeric_limits<double>::max(),
-                          std::numeric_limits<double>::lowest(), 0.1, 1.0 / 3.0};
+                          std::numeric_limits<double>::min(), ki::kMaxMagnitude,
+                          -std::nextafter(ki::kMaxMagnitude, 0.0), 0.1, 1.0 / 3.0};
   for (std::size_t k = 0; k < std::size(edges) && k < n; ++k) c.torque[k] = edges[k];
   return c;
 }

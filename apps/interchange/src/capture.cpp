@@ -32,10 +32,14 @@ void validate(const Capture& c) {
     throw std::invalid_argument("a capture needs at least 3 rows, has " + std::to_string(n));
 
   const auto check_finite = [&](const std::vector<double>& v, std::string_view name) {
-    for (std::size_t i = 0; i < v.size(); ++i)
+    for (std::size_t i = 0; i < v.size(); ++i) {
       if (!std::isfinite(v[i]))
         throw std::invalid_argument("channel '" + std::string(name) + "' row " +
                                     std::to_string(i) + " is not finite");
+      if (std::abs(v[i]) > kMaxMagnitude)
+        throw std::invalid_argument("channel '" + std::string(name) + "' row " + std::to_string(i) +
+                                    " is beyond ±1e12: no measurement in SI units is that large");
+    }
   };
   check_finite(c.t, "t");
   check_finite(c.theta, "theta");

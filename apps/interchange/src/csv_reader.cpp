@@ -260,8 +260,13 @@ class Parser {
         double v = 0;
         const NumError e = parse_number(fields_[i], v);
         if (e != NumError::kNone) field_error(e, i);
+        if (std::abs(v) > kMaxMagnitude)
+          fail(line_no(), i + 1, "column '" + std::string(column_name(columns_[i])) + "': " + quote(fields_[i]) +
+                                     " is beyond ±1e12: no measurement in SI units is that large "
+                                     "(a corrupted file, or a value in the wrong unit?)");
         dest[i]->push_back(v);
       }
+      if (first_row_line_ == 0) first_row_line_ = line_no();
       const double t = cap_.t.back();
       if (prev_t_line != 0 && !(t > prev_t))
         fail(line_no(), t_col_, "column 't': time not strictly increasing: " +
@@ -303,8 +308,25 @@ class Parser {
     if (rows < kMinRows)
       fail(line_no(), 0, "need at least " + std::to_string(kMinRows) + " data rows, found " +
                              std::to_string(rows));
-    if (cap_.omega_derived) cap_.omega = model::derivative(cap_.t, cap_.theta);
-    if (cap_.alpha_derived) cap_.alpha = model::derivative(cap_.t, cap_.omega);
+    if (cap_.omega_derived) {
+      cap_.omega = model::derivative(cap_.t, cap_.theta);
+      check_derived(cap_.omega, "omega", "theta");
+    }
+    if (cap_.alpha_derived) {
+      cap_.alpha = model::derivative(cap_.t, cap_.omega);
+      check_derived(cap_.alpha, "alpha", cap_.omega_derived ? "theta" : "omega");
+    }
+  }
+
+  // A derived channel is the file's own data differenced over its time
+  // steps: rows too close in time for their change overflow it. Named by the
+  // line of the row, like any other error in the file.
+  void check_derived(const std::vector<double>& v, const char* name, const char* from) const {
+    for (std::size_t i = 0; i < v.size(); ++i)
+      if (!std::isfinite(v[i]) || std::abs(v[i]) > kMaxMagnitude)
+        fail(first_row_line_ + i, 0, std::string(name) + " (not in the file, derived from " + from +
+                                         " and t) is beyond ±1e12 here: the rows around this line are too "
+                                         "close in time for their change in " + from);
   }
 
   std::string source_;
@@ -314,6 +336,7 @@ class Parser {
   std::vector<std::string_view> fields_;
   std::vector<std::size_t> columns_;  // channel of each field
   std::size_t header_line_ = 0, t_col_ = 0;
+  std::size_t first_row_line_ = 0;  // data rows are consecutive lines from here
 };
 
 }  // namespace

@@ -19,6 +19,11 @@ inline constexpr std::array<std::string_view, 6> kChannelNames = {
 // decimal integer (not a channel: no unit, never derived).
 inline constexpr std::string_view kFlagsColumn = "flags";
 
+// No real measurement in SI units comes near this (1e12 rad, rad/s, rad/s²,
+// N·m, s, V): a value beyond it is a corrupted file or a wrong unit, and it
+// would overflow the sums and squares that fits and summaries take.
+inline constexpr double kMaxMagnitude = 1e12;
+
 struct Capture {
   // `# key: value` lines, in file order. An empty key is a free comment.
   std::vector<std::pair<std::string, std::string>> metadata;
