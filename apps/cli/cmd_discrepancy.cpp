@@ -19,7 +19,8 @@ const CommandSpec kDiscrepancySpec{
     "  [--json OUT] [--report DIR] [--effects a,b,…] [--max-findings N] [--min-gain PCT]",
     "Find what the thesis model leaves out of a capture: locate the structured residual,\n"
     "fit candidate effects (stribeck, backlash, detent_shape, periodic_torque, …) with the\n"
-    "model, keep those that lower the error on held-out time blocks, and say so.",
+    "model, keep those that lower the error on held-out time blocks, and say so. A capture\n"
+    "from the store gets its result stored beside it.",
     {{"input", true, "interchange CSV"},
      {"capture", true, "capture id in the store"},
      {"db", true, "sqlite store"},
@@ -81,7 +82,7 @@ int run_discrepancy(const Args& args) {
   }
   if (args.get("report") == std::optional<std::string>("")) throw UsageError("--report needs a directory");
 
-  const CaptureInput in = read_capture_input(args);
+  CaptureInput in = read_capture_input(args);  // not const: its store takes the result
   const fit::FitData data = fit::prepare(in.capture, prep);
   const std::optional<CaptureInput> held = read_heldout_input(args);
   const discovery::DiscrepancyResult r =
@@ -116,12 +117,18 @@ int run_discrepancy(const Args& args) {
     std::printf("final model: %s\n", figures(r.final_model).c_str());
     if (const std::string same = discovery::same_rows_sentence(r); !same.empty()) std::printf("%s\n", same.c_str());
   }
-  if (auto out = args.get("json")) write_text(*out, discovery::to_json(r));
+  const std::string json = discovery::to_json(r);
+  if (auto out = args.get("json")) write_text(*out, json);
   if (auto dir = args.get("report")) {
     discovery::ReportOptions ro;
     ro.title = in.title;
     const auto files = discovery::write_discrepancy_report(*dir, data, r, ro);
     if (!json_to_stdout) std::printf("report: %zu files in %s\n", files.size(), dir->c_str());
+  }
+  if (in.db && in.capture_id) {
+    const std::int64_t id =
+        in.db->insert_discrepancy(*in.capture_id, json, held ? held->capture_id : std::nullopt);
+    if (!json_to_stdout) std::printf("stored as discrepancy %lld\n", static_cast<long long>(id));
   }
   return 0;
 }

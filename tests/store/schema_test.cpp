@@ -18,15 +18,16 @@ TEST(StoreSchema, FreshDatabaseGetsLatestVersionAndPragmas) {
   TempDir dir;
   auto store = ks::Store::open(dir / "k.db");
   EXPECT_EQ(store.schema_version(), ks::latest_schema_version());
-  EXPECT_GE(ks::latest_schema_version(), 2);
+  EXPECT_GE(ks::latest_schema_version(), 6);
   auto& db = store.connection();
   EXPECT_EQ(db.query_text("PRAGMA journal_mode"), "wal");
   EXPECT_EQ(db.query_int("PRAGMA synchronous"), 2);  // FULL
   EXPECT_EQ(db.query_int("PRAGMA foreign_keys"), 1);
   EXPECT_EQ(db.query_int("PRAGMA busy_timeout"), 5000);
   EXPECT_EQ(db.query_int("SELECT count(*) FROM sqlite_schema WHERE type = 'table' AND name IN"
-                         " ('knobs', 'captures', 'samples', 'fits')"),
-            4);
+                         " ('knobs', 'captures', 'samples', 'biometrics', 'fits', 'fit_files',"
+                         " 'discrepancies')"),
+            7);
   EXPECT_EQ(store.integrity_check(), "ok");
 }
 
@@ -79,8 +80,9 @@ TEST(StoreSchema, UpgradesAnOldDatabaseKeepingItsData) {
   ASSERT_EQ(store.list_knobs().size(), 1u);
   EXPECT_EQ(store.list_knobs()[0].name, "old knob");
   EXPECT_EQ(store.connection().query_int(
-                "SELECT count(*) FROM sqlite_schema WHERE name = 'fits_by_capture'"),
-            1);
+                "SELECT count(*) FROM sqlite_schema WHERE name IN"
+                " ('fits_by_capture', 'discrepancies_by_capture')"),
+            2);
 }
 
 TEST(StoreSchema, FailingStepRollsBackToThePreviousVersion) {

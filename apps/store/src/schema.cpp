@@ -100,6 +100,23 @@ CREATE TABLE fit_files (
 ALTER TABLE captures ADD COLUMN end_reason TEXT
   CHECK (end_reason IS NULL OR (length(end_reason) > 0 AND status = 'incomplete'));
 )sql",
+    // 6: a discrepancy run's result (docs/discrepancy.md's JSON), kept beside
+    // its capture like a fit. The held-out capture, when one was held out
+    // whole, is only a reference: deleting it keeps the result (it was true
+    // of the data at the time) and forgets where the held-out rows came from.
+    // Both foreign keys indexed, as in step 2, so deleting a capture finds
+    // its rows without a scan.
+    R"sql(
+CREATE TABLE discrepancies (
+  id                 INTEGER PRIMARY KEY,
+  capture_id         INTEGER NOT NULL REFERENCES captures(id) ON DELETE CASCADE,
+  heldout_capture_id INTEGER REFERENCES captures(id) ON DELETE SET NULL,
+  result             TEXT NOT NULL CHECK (json_valid(result)),
+  created_at         TEXT NOT NULL DEFAULT )sql" KNOBLAB_NOW R"sql(
+);
+CREATE INDEX discrepancies_by_capture ON discrepancies(capture_id);
+CREATE INDEX discrepancies_by_heldout ON discrepancies(heldout_capture_id);
+)sql",
 };
 
 #undef KNOBLAB_NOW

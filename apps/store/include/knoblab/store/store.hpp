@@ -1,5 +1,6 @@
 // The knoblab database: one sqlite file in WAL mode holding knobs, captures
-// with their samples, and fits with their report files. Typical use:
+// with their samples, fits with their report files, and discrepancy results.
+// Typical use:
 //
 //   auto store = Store::open("knoblab.db");
 //   auto w = store.begin_capture({.knob = "fan", .rate_hz = 10000, .source = "hapticd"});
@@ -107,8 +108,9 @@ class Store {
   // Note: sqlite stores -0.0 as 0.0; all other values come back bit-exact.
   interchange::Capture load_samples(std::int64_t id);
 
-  // With its samples, biometrics, fits and their files. Refuses a capture
-  // still 'recording'.
+  // With its samples, biometrics, fits and their files, and its discrepancy
+  // results; results that held it out are kept, without a held-out capture.
+  // Refuses a capture still 'recording'.
   void delete_capture(std::int64_t id);
 
   // A fit of a capture and its report files, in one transaction: on any
@@ -128,6 +130,14 @@ class Store {
   // All of a fit's files, by name, from one snapshot. Throws StoreError for an
   // unknown fit.
   std::vector<FitFile> load_fit_files(std::int64_t fit_id);
+
+  // A discrepancy result of a capture (discovery::to_json), with the capture
+  // held out whole when there was one. Throws StoreError, storing nothing,
+  // for an unknown capture or held-out capture and for invalid JSON.
+  std::int64_t insert_discrepancy(std::int64_t capture_id, std::string_view result_json,
+                                  std::optional<std::int64_t> heldout_capture_id = std::nullopt);
+  std::vector<DiscrepancyInfo> list_discrepancies(std::int64_t capture_id);  // by id
+  std::optional<DiscrepancyInfo> discrepancy_info(std::int64_t id);
 
   // Biometrics recorded beside a capture, appended in one transaction.
   void append_biometrics(std::int64_t capture_id, std::span<const BiometricSample> samples);

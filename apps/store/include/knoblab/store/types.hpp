@@ -69,6 +69,18 @@ struct FitInfo {
   std::string model, params, result, created_at;
 };
 
+// A discrepancy run's result (docs/discrepancy.md's JSON) as stored.
+struct DiscrepancyInfo {
+  std::int64_t id = 0;
+  std::int64_t capture_id = 0;
+  // The capture held out whole (--heldout-capture); none when time blocks of
+  // the capture itself were held out, the other recording came from a file,
+  // or that capture has since been deleted.
+  std::optional<std::int64_t> heldout_capture_id;
+  std::string result;      // JSON, byte for byte as inserted
+  std::string created_at;  // ISO 8601 UTC
+};
+
 // One file of a fit's report (a plot, fit.json, the render model), stored
 // byte for byte. name is a plain file name: not empty, no '/', no NUL, not
 // "." or "..", unique within its fit.
