@@ -5,6 +5,7 @@
 
 #include "commands.hpp"
 #include "knoblab/interchange/csv.hpp"
+#include "knoblab/interchange/sample.hpp"
 #include "knoblab/store/store.hpp"
 #include "store_open.hpp"
 #include "summary.hpp"
@@ -14,7 +15,9 @@ namespace knoblab::cli {
 const CommandSpec kInspectSpec{
     "inspect", "FILE.csv | --capture ID --db FILE [--json]",
     "Summarise a recording: length, rate, ranges, and the strongest position-periodic\n"
-    "torque (detents) as cycles per revolution from the torque-versus-position spectrum.",
+    "torque (detents) as cycles per revolution from the torque-versus-position spectrum;\n"
+    "the loop's flags (amplifier, fault, e-stop, torque limit) and an incomplete\n"
+    "capture's end reason when the file has them.",
     {{"capture", true, "capture id in the store"},
      {"db", true, "sqlite store"},
      {"json", false, "print the summary as JSON (SI units)"}},
@@ -61,6 +64,22 @@ int run_inspect(const Args& args) {
                 s.detent_power * 100);
   else
     std::printf("  spectrum   knob travelled less than one period of 64 cycles/rev: none\n");
+  if (!capture.flags.empty()) {
+    // What the loop did, so a cut capture shows in the summary too.
+    std::size_t amp = 0, fault = 0, estop = 0, limited = 0;
+    for (std::uint32_t f : capture.flags) {
+      amp += (f & interchange::kAmpEnabled) ? 1 : 0;
+      fault += (f & interchange::kFaultLatched) ? 1 : 0;
+      estop += (f & interchange::kEstopActive) ? 1 : 0;
+      limited += (f & interchange::kTorqueLimited) ? 1 : 0;
+    }
+    std::printf("  flags      amplifier on %zu, fault latched %zu, e-stop %zu, torque limited %zu "
+                "(a fit leaves the last three out)\n", amp, fault, estop, limited);
+  }
+  if (const std::string* status = capture.find_metadata("status"); status && *status != "complete") {
+    const std::string* why = capture.find_metadata("end_reason");
+    std::printf("  status     %s%s%s\n", status->c_str(), why ? ": " : "", why ? why->c_str() : "");
+  }
   return 0;
 }
 

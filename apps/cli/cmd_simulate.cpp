@@ -19,7 +19,18 @@ const CommandSpec kSimulateSpec{
     "(--knob PRESET | --params FILE) [--effects SPECS] [--seconds S] [--rate HZ] [--out FILE.csv] [--db FILE]",
     "Capture a simulated knob: the swept sine of thesis Eq. 8 (Table 3 spatial test by\n"
     "default) tracked by the PID of Eq. 4 through the plant simulator, in the loop\n"
-    "hapticd runs. Writes an interchange CSV and/or a capture in the store.\n"
+    "hapticd runs. Writes an interchange CSV and/or a capture in the store; the CSV's\n"
+    "flags column holds the loop's per-sample flags (docs/interchange.md).\n"
+    "Eq. 8's frequency, u/d Hz with u = (b-a)*t/d + a, keeps rising past t = d: the\n"
+    "default sweep runs at t/6 Hz, 1 Hz at 6 s but 10 Hz (63 rad/s at 1 rad) at 60 s.\n"
+    "For a long capture, slow it down: --sweep 0,90,1,60 ends at 1.5 Hz at 60 s.\n"
+    "The capture fails (exit status 1, saying where, why and what to change) when\n"
+    "hapticd's supervisor stops it: the knob faster than 50 rad/s (velocity), or\n"
+    "tracking lost (tracking): the knob more than 10 % of the sweep amplitude c, and\n"
+    "at least 0.01 rad, off the sweep for 20 ms running, e.g. when it needs more than\n"
+    "the 180 mN·m torque limit. The samples up to there are still written, with\n"
+    "'# status: incomplete' and '# end_reason: fault: …' (the store marks the capture\n"
+    "incomplete the same way).\n"
     "Presets: 'knoblab simulate --list'.",
     {{"knob", true, "knob preset id (see --list)"},
      {"effects", true, "effects beyond the thesis model, 'id:k=v,…;…' (sim/library_effects.hpp)"},
@@ -110,7 +121,23 @@ int run_simulate(const Args& args) {
 
   std::optional<store::Store> db;
   if (auto path = args.get("db")) db.emplace(store::Store::open(*path));
-  const SimulationResult r = simulate(req, db ? &*db : nullptr);
+  SimulationResult r;
+  try {
+    r = simulate(req, db ? &*db : nullptr);
+  } catch (const CaptureFailed& failed) {
+    // What was captured up to the fault is kept, marked incomplete, for a
+    // look at where it went wrong; the exit status says it failed.
+    std::string why = failed.what();
+    const SimulationResult& part = failed.partial();
+    if (auto out = args.get("out"); out && part.capture.size() >= interchange::kMinRows) {
+      interchange::write_csv(part.capture, std::filesystem::path(*out));
+      why += ". The " + std::to_string(part.capture.size()) + " samples up to there are in " + *out +
+             ", marked incomplete";
+    }
+    if (part.capture_id)
+      why += "; the store holds them as incomplete capture " + std::to_string(*part.capture_id);
+    throw std::runtime_error(why);
+  }
   if (auto out = args.get("out")) interchange::write_csv(r.capture, std::filesystem::path(*out));
 
   const CaptureSummary s = summarize(r.capture);

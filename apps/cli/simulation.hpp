@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "knoblab/capture/capture_controller.hpp"
@@ -32,14 +33,30 @@ struct SimulationRequest {
 };
 
 struct SimulationResult {
-  interchange::Capture capture;  // every sample, with metadata
+  interchange::Capture capture;  // every sample, with metadata and the loop's flags
   std::optional<std::int64_t> capture_id;  // when written to a store
   double tracking_rms_rad = 0.0;  // PID tracking error over the capture
   double max_command_V = 0.0;
 };
 
+// A capture the supervisor stopped (a velocity, tracking or any other fault):
+// what() says where, why and what to change; partial() holds the samples up
+// to and including the one that latched the fault, with metadata
+// `status: incomplete` and `end_reason: fault: …` (in the store, when one
+// was given, the capture is marked the same way).
+class CaptureFailed : public std::runtime_error {
+ public:
+  CaptureFailed(const std::string& why, SimulationResult partial)
+      : std::runtime_error(why), partial_(std::move(partial)) {}
+  const SimulationResult& partial() const { return partial_; }
+
+ private:
+  SimulationResult partial_;
+};
+
 // Runs the capture; when `db` is given the samples go into it in committed
-// batches while the loop runs (as hapticd's writer does).
+// batches while the loop runs (as hapticd's writer does). Throws
+// CaptureFailed when the capture did not run to its end with the motor driven.
 SimulationResult simulate(const SimulationRequest& request, store::Store* db);
 
 }  // namespace knoblab::cli

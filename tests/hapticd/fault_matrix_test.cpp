@@ -98,6 +98,37 @@ TEST(FaultMatrix, EveryFaultInEveryModeIsSafeInTheCycleItLatchesAndTheRecordingS
   }
 }
 
+// Tracking belongs to capture mode alone: a knob at its end stop, the sweep
+// pushing it on. The cycle that finds it lost is safe and ends the capture.
+TEST(FaultMatrix, ACaptureThatLosesTheKnobLatchesTrackingAndEndsOnThatCycle) {
+  sim::PlantConfig plant = testing::plant_with("moderate-detents");
+  plant.knob.walls.lo = -0.3;  // rad: stops well inside the sweep's ±1 rad
+  plant.knob.walls.hi = 0.3;
+  plant.knob.walls.K = 10.0;  // N·m/rad: 18 mrad under the full torque limit
+  CoreHarness h(plant);
+  h.start_capture(static_cast<std::int64_t>(3 * CoreHarness::kRate));
+  LoopRecord latched{};
+  for (int i = 0; i < 3 * static_cast<int>(CoreHarness::kRate); ++i) {
+    latched = h.step();
+    if (latched.faults != 0) break;
+  }
+  ASSERT_EQ(latched.faults, kFaultTracking) << fault_list(latched.faults);
+  EXPECT_EQ(latched.end, RecordingEnd::fault);
+  EXPECT_EQ(latched.mode, Mode::Capture);
+  EXPECT_FALSE(h.last_out.amp_enable);
+  EXPECT_EQ(h.last_out.motor_command_V, 0.0);
+  // Off by more than 0.1 rad for the 20 ms before: the sweep past 0.4 rad.
+  const double ref = model::SweptSine::spatial().theta(latched.sample.t - 0.02);
+  EXPECT_GT(ref, 0.4);
+  EXPECT_LT(latched.sample.theta, 0.35);
+  h.step();
+  EXPECT_EQ(h.core().state().mode, Mode::Idle);
+  // Not capturing, the cause is gone: a clear releases it.
+  h.command(CoreCommand::ClearFault);
+  h.run(2);
+  EXPECT_EQ(h.core().state().faults, 0u);
+}
+
 TEST(FaultMatrix, OneOrTwoFailedIoCyclesInARowAreToleratedAndTheCountRestarts) {
   CoreHarness h;
   h.set_render(0.002, 0.02);

@@ -124,10 +124,28 @@ TEST(Supervisor, IoErrorsLatchAtTheConfiguredCountInARow) {
   EXPECT_FALSE(out.amp_enable);
 }
 
+TEST(Supervisor, ALostCaptureLatchesTrackingAndClearsOnceTheCaptureIsGone) {
+  Supervisor sup;
+  SafetyInputs in;
+  in.tracking_lost = true;
+  auto out = driving(11.0);
+  sup.apply(in, out);
+  EXPECT_EQ(sup.latched(), kFaultTracking);
+  EXPECT_EQ(out.motor_command_V, 0.0);
+  EXPECT_FALSE(out.amp_enable);
+  SafetyInputs clear;
+  clear.clear_requested = true;
+  out = driving(1.0);
+  sup.apply(clear, out);
+  EXPECT_EQ(sup.latched(), 0u);
+  EXPECT_TRUE(out.amp_enable);
+}
+
 TEST(Supervisor, FaultListNamesEachLatchedFaultOnceInTableOrder) {
   EXPECT_EQ(fault_list(0), "");
   EXPECT_EQ(fault_list(kFaultVelocity | kFaultEstop), "estop,velocity");
   EXPECT_EQ(fault_list(kFaultIo | kFaultNonFinite | kFaultRecording), "io,non_finite,recording");
+  EXPECT_EQ(fault_list(kFaultTracking | kFaultVelocity), "velocity,tracking");
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "knoblab/model/trajectory.hpp"
@@ -109,6 +110,35 @@ TEST(SweptSine, Table3Presets) {
   EXPECT_EQ(tq.d, 3.0);
   EXPECT_EQ(sp.theta(0.0), 0.0);
   EXPECT_EQ(sp.omega(0.0), 0.0);  // a = 0 starts at rest
+}
+
+// Eq. 8 has no end: Table 3's sweep runs at t/6 Hz for as long as it runs.
+TEST(SweptSine, Table3SweepKeepsSpeedingUpPastDAndPassesFiftyRadPerSecondBeforeAMinute) {
+  const SweptSine s = SweptSine::spatial();
+  EXPECT_DOUBLE_EQ(s.frequency_hz(6.0), 1.0);
+  EXPECT_NEAR(s.frequency_hz(46.5), 7.75, 1e-12);
+  EXPECT_NEAR(s.frequency_hz(60.0), 10.0, 1e-12);
+  EXPECT_NEAR(s.peak_speed(60.0), 2 * kPi * 10.0, 1e-9);  // rad/s at c = 1 rad
+  // 50 rad/s = c·2π·t/6 at t = 150/π s = 47.7 s.
+  EXPECT_NEAR(s.time_at_peak_speed(50.0), 150.0 / kPi, 1e-9);
+  EXPECT_NEAR(s.peak_speed(s.time_at_peak_speed(50.0)), 50.0, 1e-9);
+  // The envelope bounds θ̇ over the cycle around any t.
+  for (double t = 40.0; t < 60.0; t += 1e-3) ASSERT_LE(std::abs(s.omega(t)), s.peak_speed(t) + 1e-9);
+}
+
+TEST(SweptSine, TimeAtPeakSpeedForFasterStartsDownwardSweepsAndPureSines) {
+  const SweptSine up{2.0, 40.0, 0.3, 2.0};  // 1 Hz → 20 Hz over 2 s
+  EXPECT_EQ(up.time_at_peak_speed(0.1), 0.0);  // already faster at the start
+  const double t = up.time_at_peak_speed(20.0);
+  EXPECT_NEAR(up.peak_speed(t), 20.0, 1e-9);
+  EXPECT_GT(t, 0.0);
+  // Downward: u falls through 0 and its magnitude grows again, negative.
+  const SweptSine down{1.0, -5.0, 0.5, 1.0};
+  const double td = down.time_at_peak_speed(10.0);
+  EXPECT_NEAR(down.peak_speed(td), 10.0, 1e-9);
+  EXPECT_LT(down.frequency_hz(td), 0.0);
+  const SweptSine pure{2.0, 2.0, 0.5, 4.0};
+  EXPECT_EQ(pure.time_at_peak_speed(100.0), std::numeric_limits<double>::infinity());
 }
 
 TEST(TorqueSweep, HasTheSameChirpShape) {

@@ -1,10 +1,19 @@
 #include "knoblab/capture/capture_controller.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace knoblab::capture {
 
-CaptureController::CaptureController(const CaptureConfig& cfg) : cfg_(cfg), pid_(cfg.pid) {}
+double TrackingLimits::threshold_rad(double amplitude_rad) const {
+  return std::max(fraction * std::abs(amplitude_rad), floor_rad);
+}
+
+CaptureController::CaptureController(const CaptureConfig& cfg)
+    : cfg_(cfg),
+      pid_(cfg.pid),
+      threshold_rad_(cfg.tracking.threshold_rad(cfg.stimulus.c)),
+      hold_cycles_(std::max(1LL, std::llround(cfg.tracking.hold_s * cfg.rate_hz))) {}
 
 void CaptureController::update(const SensorReading& in, DaqOutputs& out, Sample& s) {
   const double dt = 1.0 / cfg_.rate_hz;
@@ -27,6 +36,9 @@ void CaptureController::update(const SensorReading& in, DaqOutputs& out, Sample&
     const double ref = theta0_ + cfg_.stimulus.theta(t);
     const double ref_omega = cfg_.stimulus.omega(t);
     s.command = pid_.update(ref, ref_omega, s.theta, s.omega, dt);
+    // NaN never counts as off here: the supervisor's non_finite has it.
+    off_cycles_ = std::abs(ref - s.theta) > threshold_rad_ ? off_cycles_ + 1 : 0;
+    if (off_cycles_ >= hold_cycles_) tracking_lost_ = true;
   }
   out.motor_command_V = s.command;
   out.amp_enable = true;

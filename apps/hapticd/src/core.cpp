@@ -179,6 +179,7 @@ void HapticCore::cycle(const capture::DaqInputs& in, const CycleContext& ctx, ca
                           std::isfinite(s.alpha) && std::isfinite(s.torque);
   safety.consecutive_overruns = static_cast<int>(ctx.consecutive_overruns);
   safety.consecutive_io_errors = io_errors_in_a_row_;
+  safety.tracking_lost = mode_ == Mode::Capture && capture_.tracking_lost();
   safety.clear_requested = clear_requested_;
   clear_requested_ = false;
   const bool limited = supervisor_.apply(safety, out);

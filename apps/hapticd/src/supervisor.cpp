@@ -25,6 +25,7 @@ bool Supervisor::apply(const SafetyInputs& in, capture::DaqOutputs& out) {
     now |= kFaultNonFinite;
   if (in.consecutive_overruns > limits_.max_consecutive_overruns) now |= kFaultOverruns;
   if (in.consecutive_io_errors >= limits_.max_consecutive_io_errors) now |= kFaultIo;
+  if (in.tracking_lost) now |= kFaultTracking;
 
   // A clear succeeds only for causes that are gone; live causes stay latched.
   if (in.clear_requested) latched_ = 0;

@@ -1,6 +1,7 @@
 #include "knoblab/model/trajectory.hpp"
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace knoblab::model {
@@ -39,6 +40,18 @@ double SweptSine::alpha(double t) const noexcept {
   const double phi = p.phase(t);
   const double w = p.rate(t);
   return -c * w * w * std::sin(phi) + c * p.rate_dot() * std::cos(phi);
+}
+
+double SweptSine::peak_speed(double t) const noexcept { return std::abs(c * chirp().rate(t)); }
+
+double SweptSine::time_at_peak_speed(double speed) const noexcept {
+  // c·|φ'(t)| = |c|·2π·|u(t)|/d with u linear in t: |u| reaches the level
+  // u* = speed·d / (2π|c|) first at t = 0, or where u crosses ±u* on its way.
+  if (peak_speed(0.0) >= speed) return 0.0;
+  if (c == 0.0 || a == b) return std::numeric_limits<double>::infinity();
+  const double u_star = speed * d / (2.0 * kPi * std::abs(c));
+  const double target = b > a ? u_star : -u_star;  // u grows towards +∞ or −∞
+  return (target - a) * d / (b - a);
 }
 
 Kinematics<double> SweptSine::at(double t) const noexcept {

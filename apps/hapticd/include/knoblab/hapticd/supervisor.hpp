@@ -24,6 +24,7 @@ enum Fault : std::uint32_t {
   kFaultIo = 1u << 7,             // DAQ or GPIO reads/writes failed several cycles running
   kFaultNonFinite = 1u << 8,      // NaN or ±Inf in a command or the estimated velocity
   kFaultRecording = 1u << 9,      // a capture could not be stored: it stops, the motor goes safe
+  kFaultTracking = 1u << 10,      // a position capture lost the knob (capture_controller.hpp)
 };
 
 // Each fault's name in the protocol, the store and logs: the one table.
@@ -35,7 +36,7 @@ inline constexpr FaultName kFaultNames[] = {
     {kFaultEstop, "estop"},         {kFaultAmplifier, "amplifier"}, {kFaultAmpComms, "amp_comms"},
     {kFaultWatchdog, "watchdog"},   {kFaultOverruns, "overruns"},   {kFaultVelocity, "velocity"},
     {kFaultCommanded, "commanded"}, {kFaultIo, "io"},               {kFaultNonFinite, "non_finite"},
-    {kFaultRecording, "recording"}};
+    {kFaultRecording, "recording"}, {kFaultTracking, "tracking"}};
 
 // "estop,velocity" ("" for none), in kFaultNames order.
 std::string fault_list(std::uint32_t faults);
@@ -59,6 +60,7 @@ struct SafetyInputs {
   bool sensors_finite = true;         // θ, α and torque of this cycle are all finite
   int consecutive_overruns = 0;
   int consecutive_io_errors = 0;      // cycles running with a failed read or write
+  bool tracking_lost = false;         // the running capture no longer follows its sweep
   bool clear_requested = false;
 };
 

@@ -13,6 +13,11 @@
 // d = 1 s. (Table 3's spatial sweep, a=0, b=1.5, d=3, reaches 0.5 Hz at 3 s
 // and 1 Hz at the 6 s end of Eq. 9.) from_hz() builds a sweep between given
 // frequencies in Hz.
+//
+// Eq. 8 has no end: past t = d the frequency keeps rising at the same rate,
+// (b−a)/d² Hz per second. Table 3's sweep runs at t/6 Hz, so a minute of it
+// ends at 10 Hz, where θ̇ peaks at c·2π·10 = 63 rad/s and θ̈ at 3950 rad/s².
+// peak_speed() and time_at_peak_speed() say how fast a sweep gets, and when.
 #pragma once
 
 #include <numbers>
@@ -45,6 +50,12 @@ struct SweptSine {
   double omega(double t) const noexcept;         // rad/s
   double alpha(double t) const noexcept;         // rad/s²
   double frequency_hz(double t) const noexcept { return chirp().frequency_hz(t); }
+  // θ̇'s envelope around t, c·|φ'(t)| (rad/s): the fastest the sweep moves
+  // in the cycle it runs at t.
+  double peak_speed(double t) const noexcept;
+  // The first t ≥ 0 at which that envelope reaches `speed` (rad/s): 0 when
+  // it starts there, +∞ when it never does.
+  double time_at_peak_speed(double speed) const noexcept;
   Kinematics<double> at(double t) const noexcept;
   ChirpPhase chirp() const noexcept { return {a, b, d}; }
 };
