@@ -44,7 +44,12 @@ std::vector<discovery::EffectId> parse_effects(const std::string& list) {
     const std::size_t comma = std::min(list.find(',', at), list.size());
     const std::string name = list.substr(at, comma - at);
     const auto id = discovery::parse_effect(name);
-    if (!id) throw UsageError("unknown effect '" + name + "' in --effects");
+    if (!id) {
+      std::string known;
+      for (const discovery::EffectId e : discovery::kAllEffects)
+        known += (known.empty() ? "" : ", ") + std::string(discovery::effect_name(e));
+      throw UsageError("unknown effect '" + name + "' in --effects (known: " + known + ")");
+    }
     out.push_back(*id);
     at = comma + 1;
   }

@@ -154,6 +154,17 @@ TEST(Simulate, ParamsFileGivesTheSameKnobAsThePreset) {
   EXPECT_NE(r.err.find("not valid JSON"), std::string::npos) << r.err;
 }
 
+// Mistyped effect names get the list to choose from, in both commands.
+TEST(Simulate, AnUnknownEffectListsTheKnownOnesInSimulateAndDiscrepancy) {
+  const RunResult sim = run_knoblab({"simulate", "--knob", "moderate-detents", "--effects", "cogging:A=1"});
+  EXPECT_EQ(sim.exit_code, 2);
+  EXPECT_NE(sim.err.find("unknown effect 'cogging' (known: backlash,"), std::string::npos) << sim.err;
+  const RunResult disc = run_knoblab({"discrepancy", "--input", "x.csv", "--effects", "cogging"});
+  EXPECT_EQ(disc.exit_code, 2);
+  EXPECT_NE(disc.err.find("unknown effect 'cogging' in --effects (known: offset, gravity,"), std::string::npos)
+      << disc.err;
+}
+
 // The loop closes: what fit writes, simulate reads, as it is written.
 TEST(Simulate, ParamsTakesAFitsResultJsonAndItsRenderModelAsWritten) {
   ScratchDir dir;

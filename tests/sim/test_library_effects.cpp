@@ -25,7 +25,29 @@ TEST(LibraryEffects, SpecsParseAndPrintBack) {
   EXPECT_DOUBLE_EQ(specs[0].params.at("v_s"), 0.1);
   EXPECT_EQ(specs[1].params.at("A"), 3e-3);
   EXPECT_EQ(parse_effect_specs(specs[0].text())[0].params, specs[0].params);
-  EXPECT_EQ(parse_effect_specs("offset")[0].params.size(), 0u);
+}
+
+// Named without the parameter that gives it a size, an effect would be zero.
+TEST(LibraryEffects, AnEffectWithoutItsSizeIsRefusedSayingWhichParameterItNeeds) {
+  const auto why = [](const char* text) {
+    try {
+      parse_effect_specs(text);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(why("stribeck").find("effect 'stribeck' needs excess: without it the effect is zero "
+                                 "(its parameters: excess, v_s; e.g. 'stribeck:excess=…')"),
+            std::string::npos)
+      << why("stribeck");
+  EXPECT_NE(why("spring:theta0=0.1").find("needs one of K, K3"), std::string::npos) << why("spring:theta0=0.1");
+  EXPECT_NE(why("offset").find("needs tau0"), std::string::npos);
+  EXPECT_NE(why("cogging:A=1").find("unknown effect 'cogging' (known: backlash, compliance,"), std::string::npos)
+      << why("cogging:A=1");
+  EXPECT_NE(why("stribeck:speed=1").find("has no parameter 'speed' (its parameters: excess, v_s)"),
+            std::string::npos)
+      << why("stribeck:speed=1");
 }
 
 TEST(LibraryEffects, BadSpecsAreRejectedWithTheReason) {

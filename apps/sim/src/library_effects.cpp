@@ -4,7 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
-#include <set>
+#include <vector>
 #include <stdexcept>
 
 #include "knoblab/model/effects.hpp"
@@ -13,25 +13,45 @@ namespace knoblab::sim {
 
 namespace {
 
-const std::map<std::string, std::set<std::string>>& known() {
-  static const std::map<std::string, std::set<std::string>> k = {
-      {"offset", {"tau0"}},
-      {"gravity", {"A", "phase"}},
-      {"stribeck", {"excess", "v_s"}},
-      {"nonlinear_damping", {"c", "p"}},
-      {"position_friction", {"depth", "P", "phase"}},
-      {"periodic_torque", {"A", "P", "S"}},
-      {"drift", {"rate", "t0"}},
-      {"spring", {"K", "K3", "theta0"}},
-      {"detent_shape", {"a2", "b2", "a3", "b3", "a4", "b4"}},
-      {"backlash", {"width"}},
-      {"hysteresis", {"presliding"}},
-      {"endstop", {"position", "stiffness", "damping"}},
-      {"compliance", {"stiffness", "frequency", "damping", "zeta"}},
-      {"time_delay", {"delay"}},
-      {"saturation", {"limit"}},
+// Each effect's parameters, and those of which it needs at least one: the
+// ones that give it a size. Without any of them the effect is zero, which a
+// user who named it did not mean.
+struct Kind {
+  std::vector<std::string> params;
+  std::vector<std::string> needs_one_of;
+};
+
+const std::map<std::string, Kind>& known() {
+  static const std::map<std::string, Kind> k = {
+      {"offset", {{"tau0"}, {"tau0"}}},
+      {"gravity", {{"A", "phase"}, {"A"}}},
+      {"stribeck", {{"excess", "v_s"}, {"excess"}}},
+      {"nonlinear_damping", {{"c", "p"}, {"c"}}},
+      {"position_friction", {{"depth", "P", "phase"}, {"depth"}}},
+      {"periodic_torque", {{"A", "P", "S"}, {"A"}}},
+      {"drift", {{"rate", "t0"}, {"rate"}}},
+      {"spring", {{"K", "K3", "theta0"}, {"K", "K3"}}},
+      {"detent_shape", {{"a2", "b2", "a3", "b3", "a4", "b4"}, {"a2", "b2", "a3", "b3", "a4", "b4"}}},
+      {"backlash", {{"width"}, {"width"}}},
+      {"hysteresis", {{"presliding"}, {"presliding"}}},
+      {"endstop", {{"position", "stiffness", "damping"}, {"position"}}},
+      {"compliance", {{"stiffness", "frequency", "damping", "zeta"}, {"stiffness", "frequency"}}},
+      {"time_delay", {{"delay"}, {"delay"}}},
+      {"saturation", {{"limit"}, {"limit"}}},
   };
   return k;
+}
+
+std::string joined(const std::vector<std::string>& names, const char* sep) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : sep) + n;
+  return out;
+}
+
+std::string known_ids() {
+  std::vector<std::string> ids;
+  for (const auto& [id, kind] : known()) ids.push_back(id);
+  return joined(ids, ", ");
 }
 
 double get(const EffectSpec& s, const char* name, double fallback = 0.0) {
@@ -110,7 +130,8 @@ std::vector<EffectSpec> parse_effect_specs(std::string_view text) {
     const std::size_t colon = one.find(':');
     s.id = std::string(one.substr(0, colon));
     const auto kind = known().find(s.id);
-    if (kind == known().end()) throw std::invalid_argument("unknown effect '" + s.id + "'");
+    if (kind == known().end())
+      throw std::invalid_argument("unknown effect '" + s.id + "' (known: " + known_ids() + ")");
     std::string_view rest = colon == std::string_view::npos ? "" : one.substr(colon + 1);
     while (!rest.empty()) {
       const std::size_t comma = std::min(rest.find(','), rest.size());
@@ -120,15 +141,23 @@ std::vector<EffectSpec> parse_effect_specs(std::string_view text) {
       if (eq == std::string_view::npos)
         throw std::invalid_argument("effect '" + s.id + "': expected name=value, got '" + std::string(kv) + "'");
       const std::string name(kv.substr(0, eq)), value(kv.substr(eq + 1));
-      if (!kind->second.count(name))
-        throw std::invalid_argument("effect '" + s.id + "' has no parameter '" + name + "'");
+      const auto& params = kind->second.params;
+      if (std::find(params.begin(), params.end(), name) == params.end())
+        throw std::invalid_argument("effect '" + s.id + "' has no parameter '" + name + "' (its parameters: " +
+                                    joined(params, ", ") + ")");
       char* stop = nullptr;
       const double v = std::strtod(value.c_str(), &stop);
       if (value.empty() || *stop != '\0' || !std::isfinite(v))
         throw std::invalid_argument("effect '" + s.id + "': '" + name + "' is not a number: '" + value + "'");
       s.params[name] = v;
     }
-    check_values(s);
+    check_values(s);  // first: its sentences are the more specific ones
+    const auto& needs = kind->second.needs_one_of;
+    if (std::none_of(needs.begin(), needs.end(), [&](const std::string& n) { return s.params.count(n) != 0; }))
+      throw std::invalid_argument("effect '" + s.id + "' needs " + (needs.size() > 1 ? "one of " : "") +
+                                  joined(needs, ", ") + ": without " + (needs.size() > 1 ? "any" : "it") +
+                                  " the effect is zero (its parameters: " + joined(kind->second.params, ", ") +
+                                  "; e.g. '" + s.id + ":" + needs.front() + "=…')");
     out.push_back(std::move(s));
   }
   return out;
