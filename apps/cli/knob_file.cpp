@@ -33,6 +33,16 @@ void reject_unknown(const json& obj, const std::vector<std::string_view>& known,
   }
 }
 
+// The knob of Eq. 6's eight parameters (fit order), without a stick band.
+sim::KnobParams knob_from(const double (&v)[model::kThesisParamCount]) {
+  const auto m = model::ThesisModel<double>::from_params(v);
+  sim::KnobParams k;
+  k.inertia = m.inertia;
+  k.friction = m.friction;
+  k.detents = m.detents;
+  return k;
+}
+
 // The stick band's three values; the fit also writes how many samples it
 // saw in the band, which describes the capture, not the knob.
 model::KarnoppStick<double> stick_band(const json& s, const std::string& where) {
@@ -49,11 +59,7 @@ sim::KnobParams from_thesis6(const json& doc, const std::string& where) {
     const std::string key(model::kThesisParamNames[i]);
     v[i] = number(p, key, where, i == model::kP_pos ? 1.0 : 0.0);
   }
-  const auto m = model::ThesisModel<double>::from_params(v);
-  sim::KnobParams k;
-  k.inertia = m.inertia;
-  k.friction = m.friction;
-  k.detents = m.detents;
+  sim::KnobParams k = knob_from(v);
   if (doc.contains("stick") && !doc.at("stick").is_null()) {
     if (!doc.at("stick").is_object()) throw std::invalid_argument(where + ": \"stick\" must be an object or null");
     k.stick = stick_band(doc.at("stick"), where + ": stick");
@@ -74,11 +80,7 @@ sim::KnobParams from_render4(const json& doc, const std::string& where) {
   v[model::kA_pos] = number(p, "A_pos", where, 0.0);
   v[model::kP_pos] = number(p, "P_pos", where, 1.0);
   v[model::kS_pos] = number(p, "S_pos", where, 0.0);
-  const auto m = model::ThesisModel<double>::from_params(v);
-  sim::KnobParams k;
-  k.inertia = m.inertia;
-  k.friction = m.friction;
-  k.detents = m.detents;
+  sim::KnobParams k = knob_from(v);
   json band = json::object();
   for (const char* key : {"dv", "D_neg", "D_pos"})
     if (p.contains(key)) band[key] = p.at(key);

@@ -1,6 +1,5 @@
 #include "knoblab/fit/physical_checks.hpp"
 
-#include <cmath>
 #include <cstdio>
 
 namespace knoblab::fit {
