@@ -19,7 +19,8 @@ namespace knoblab::cli {
 
 const CommandSpec kConvertSpec{
     "convert", "IN.mat OUT.csv --columns NAMES [OPTIONS]",
-    "Convert an outside recording in a MATLAB MAT-file (v5, -v7) to interchange CSV.\n"
+    "Convert an outside recording to interchange CSV.\n"
+    "The recording is a MATLAB MAT-file (v5, -v7).\n"
     "--columns names the channel each matrix row (or column) holds: t, theta, omega, alpha,\n"
     "torque, command, or - to skip one. For a cell array each name takes one row of cells,\n"
     "and the cell columns (segments) are joined in order. Time is shifted to start at 0;\n"
@@ -35,7 +36,9 @@ const CommandSpec kConvertSpec{
      {"segment-time", true, "cell arrays: continuous (default), or restart when each segment's "
                             "clock starts again at 0"},
      {"knob", true, "knob name for the '# knob:' line (import files it under this name)"}},
-    2, 2};
+    2, 2, true,
+    {"knoblab convert slow2/nocomp_0.mat nocomp_0.csv --columns t,theta,torque --counts-per-rev 8192 "
+     "--torque-scale 0.0551 --unwrap"}};
 
 namespace {
 

@@ -9,48 +9,55 @@
 #include "knoblab/store/store.hpp"
 #include "store_open.hpp"
 #include "summary.hpp"
+#include "table_output.hpp"
 
 namespace knoblab::cli {
 
 const CommandSpec kInspectSpec{
-    "inspect", "FILE.csv | --capture ID --db FILE [--json]",
-    "Summarise a recording: length, rate, ranges, and the strongest position-periodic\n"
-    "torque (detents) as cycles per revolution from the torque-versus-position spectrum;\n"
+    "inspect", "(FILE.csv | --capture ID --db FILE.sqlite) [--json | --csv]",
+    "Summarise a recording: its length, rate, ranges and detents.\n"
+    "The detents are the strongest position-periodic torque, as cycles per revolution\n"
+    "from the torque-versus-position spectrum (text in degrees and mN·m, JSON and CSV in SI);\n"
     "the loop's flags (amplifier, fault, e-stop, torque limit) and an incomplete\n"
     "capture's end reason when the file has them.",
-    {{"capture", true, "capture id in the store"},
+    {{"capture", true, "capture id in the store (instead of FILE.csv)"},
      {"db", true, "sqlite store"},
-     {"json", false, "print the summary as JSON (SI units)"}},
-    0, 1};
+     {"json", false, "print the summary as JSON (SI units)"},
+     {"csv", false, "print the summary as one CSV row under a header (SI units)"}},
+    0, 1, true,
+    {"knoblab inspect knob.csv", "knoblab inspect --capture 1 --db lab.sqlite --json"}};
 
 int run_inspect(const Args& args) {
   interchange::Capture capture;
   std::string name;
-  if (!args.positionals().empty()) {
+  if (args.has("json") && args.has("csv")) throw UsageError("give --json or --csv, not both");
+  if (const auto file = args.input()) {
     if (args.has("capture")) throw UsageError("give a FILE or --capture, not both");
-    name = args.positionals()[0];
+    name = *file;
     capture = interchange::read_csv(name);
   } else {
     const std::string id = args.require("capture");
+    const long long capture_id = parse_id("--capture", id);
     store::Store db = open_store_to_read(args.require("db"));
-    capture = db.load_samples(std::stoll(id));
+    capture = db.load_samples(capture_id);
     name = "capture " + id;
   }
   const CaptureSummary s = summarize(capture);
   const double deg = 180.0 / std::numbers::pi;
+  Table table{{"samples", "duration_s", "mean_rate_hz", "theta_min_rad", "theta_max_rad",
+                "omega_max_abs_rad_s", "torque_min_Nm", "torque_max_Nm", "torque_rms_Nm",
+                "detent_cycles_per_rev", "detent_amplitude_Nm", "detent_power"},
+               {{s.samples, s.duration_s, s.mean_rate_hz, s.theta_min, s.theta_max, s.omega_max_abs,
+                 s.torque_min, s.torque_max, s.torque_rms,
+                 s.detent_cycles_per_rev ? nlohmann::json(*s.detent_cycles_per_rev) : nlohmann::json(),
+                 s.detent_cycles_per_rev ? nlohmann::json(s.detent_amplitude) : nlohmann::json(),
+                 s.detent_cycles_per_rev ? nlohmann::json(s.detent_power) : nlohmann::json()}}};
   if (args.has("json")) {
-    std::printf("{\"samples\": %zu, \"duration_s\": %.9g, \"mean_rate_hz\": %.9g, "
-                "\"theta_min_rad\": %.9g, \"theta_max_rad\": %.9g, \"torque_min_Nm\": %.9g, "
-                "\"torque_max_Nm\": %.9g, \"torque_rms_Nm\": %.9g, \"detent_cycles_per_rev\": ",
-                s.samples, s.duration_s, s.mean_rate_hz, s.theta_min, s.theta_max, s.torque_min,
-                s.torque_max, s.torque_rms);
-    if (s.detent_cycles_per_rev)
-      std::printf("%.9g, \"detent_amplitude_Nm\": %.9g, \"detent_power\": %.6g}\n",
-                  *s.detent_cycles_per_rev, s.detent_amplitude, s.detent_power);
-    else
-      std::printf("null}\n");
+    // One object, not a one-row array: the summary of one recording.
+    std::printf("%s\n", row_object(table, 0).dump().c_str());
     return 0;
   }
+  if (print_table_if_asked(args, table)) return 0;
   std::printf("%s: %zu samples over %.3f s (mean rate %.1f Hz)\n", name.c_str(), s.samples,
               s.duration_s, s.mean_rate_hz);
   std::printf("  position   %.2f° … %.2f°\n", s.theta_min * deg, s.theta_max * deg);
