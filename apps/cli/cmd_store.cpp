@@ -47,11 +47,28 @@ const CommandSpec kListSpec{
 
 namespace {
 
+// What `knoblab export` writes about the row a capture had in its store:
+// kept on import as where the file came from, not as this capture's own.
+bool exported_field(const std::string& key) {
+  for (const char* k : {"capture_id", "rate_hz", "source", "status", "end_reason", "started_at", "finished_at",
+                        "sample_count"})
+    if (key == k) return true;
+  return false;
+}
+
 // A CSV that knoblab wrote says which knob, mounting and stimulus it holds;
 // those become the capture's own fields, the other comments its metadata.
 store::NewCapture describe_import(const interchange::Capture& capture, const Args& args) {
   store::NewCapture info;
-  nlohmann::json rest = nlohmann::json::object();
+  // In file order; a key given twice keeps all its values (an array), free
+  // comments go under "comments": nothing the file said is lost.
+  nlohmann::ordered_json rest = nlohmann::ordered_json::object();
+  const auto keep = [&rest](const std::string& key, const std::string& value) {
+    auto it = rest.find(key);
+    if (it == rest.end()) rest[key] = value;
+    else if (it->is_array()) it->push_back(value);
+    else *it = nlohmann::ordered_json::array({*it, value});
+  };
   for (const auto& [key, value] : capture.metadata) {
     const bool is_object = nlohmann::json::accept(value) && nlohmann::json::parse(value).is_object();
     if (key == "knob") info.knob = value;
@@ -59,8 +76,14 @@ store::NewCapture describe_import(const interchange::Capture& capture, const Arg
     else if (key == "stimulus" && is_object) info.stimulus = value;
     else if (key == "orientation" && is_object) info.orientation = value;
     else if (key == "calibration" && is_object) info.calibration = value;
-    else if (key == "metadata" && is_object) rest.update(nlohmann::json::parse(value));
-    else rest[key] = value;
+    else if (key == "metadata" && is_object) rest.update(nlohmann::ordered_json::parse(value));
+    else if (exported_field(key)) rest["exported_from"][key] = value;
+    else if (key.empty()) {
+      if (!rest.contains("comments")) rest["comments"] = nlohmann::ordered_json::array();
+      rest["comments"].push_back(value);
+    } else {
+      keep(key, value);
+    }
   }
   info.metadata = rest.dump();
   if (auto knob = args.get("knob")) info.knob = *knob;
