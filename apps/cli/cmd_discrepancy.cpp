@@ -34,7 +34,7 @@ const CommandSpec kDiscrepancySpec{
      {"alpha", true, "accel (default: the α column, when the CSV has one) or encoder (θ'')", "accel|encoder"},
      {"no-filter", false, "skip the Table 6 low-pass filters (data already clean)"}},
     0, 1, true,
-    {"knoblab simulate --knob moderate-detents --effects 'stribeck:excess=0.004,v_s=0.5' "
+    {"knoblab simulate --knob moderate-detents --effects 'stribeck:static_excess_Nm=0.004,stribeck_velocity_rad_s=0.5' "
      "--out knob.csv && knoblab discrepancy knob.csv --report report/",
      "knoblab discrepancy --capture 1 --db lab.sqlite --json found.json"}};
 

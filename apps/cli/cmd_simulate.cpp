@@ -34,7 +34,7 @@ const CommandSpec kSimulateSpec{
     "incomplete the same way).\n"
     "Presets: 'knoblab simulate --list'.",
     {{"knob", true, "knob preset id (see --list)", "PRESET"},
-     {"effects", true, "effects beyond the thesis model, 'id:k=v,…;…' (docs/discrepancy.md)", "SPECS"},
+     {"effects", true, "effects beyond the thesis model, 'id:name=value,…;…', the names discrepancy reports (docs/discrepancy.md)", "SPECS"},
      {"params", true, "a fit's result JSON (knoblab fit --json) or a render model"},
      {"seconds", true, "capture length, s (default 5, as the thesis)"},
      {"rate", true, "loop rate, Hz (default 5000; 1..20000)"},
@@ -52,7 +52,7 @@ const CommandSpec kSimulateSpec{
     0, 0, false,
     {"knoblab simulate --knob moderate-detents --out knob.csv",
      "knoblab simulate --params fit.json --seconds 10 --db lab.sqlite",
-     "knoblab simulate --knob high-friction --effects 'stribeck:excess=0.004,v_s=0.5' --out sticky.csv"}};
+     "knoblab simulate --knob high-friction --effects 'stribeck:static_excess_Nm=0.004,stribeck_velocity_rad_s=0.5' --out sticky.csv"}};
 
 namespace {
 
@@ -103,7 +103,7 @@ int run_simulate(const Args& args) {
   }
   if (auto text = args.get("effects")) {
     try {
-      req.effects = sim::parse_effect_specs(*text);
+      req.effects = model::parse_effect_specs(*text);
     } catch (const std::invalid_argument& e) {
       throw UsageError(std::string("--effects: ") + e.what());
     }

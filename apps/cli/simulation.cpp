@@ -148,16 +148,16 @@ SimulationResult simulate(const SimulationRequest& request, store::Store* db) {
   // the knob, rig effects (compliance, delay, clipping) into the plant's
   // config, the rest are knob torques on the plant. The metadata lists all.
   SimulationRequest r = request;
-  std::vector<const sim::EffectSpec*> rest;
-  for (const sim::EffectSpec& e : request.effects)
+  std::vector<const model::EffectSpec*> rest;
+  for (const model::EffectSpec& e : request.effects)
     if (!sim::apply_to_knob(e, r.knob)) rest.push_back(&e);
   validate(r);
   sim::PlantConfig plant = plant_config(r);
-  std::vector<const sim::EffectSpec*> torques;
-  for (const sim::EffectSpec* e : rest)
+  std::vector<const model::EffectSpec*> torques;
+  for (const model::EffectSpec* e : rest)
     if (!sim::apply_to_plant(*e, plant)) torques.push_back(e);
   capture::SimDaq daq(plant, r.rate_hz);
-  for (const sim::EffectSpec* e : torques) daq.plant().add_effect(sim::make_knob_effect(*e));
+  for (const model::EffectSpec* e : torques) daq.plant().add_effect(sim::make_knob_effect(*e));
 
   capture::CaptureConfig cfg;
   cfg.rate_hz = r.rate_hz;
@@ -177,7 +177,7 @@ SimulationResult simulate(const SimulationRequest& request, store::Store* db) {
                   {"orientation", orientation},        {"calibration", calibration.to_json()}};
   if (!r.effects.empty()) {
     std::string list;
-    for (const sim::EffectSpec& e : r.effects) list += (list.empty() ? "" : ";") + e.text();
+    for (const model::EffectSpec& e : r.effects) list += (list.empty() ? "" : ";") + e.text();
     cap.metadata.emplace_back("effects", list);
   }
   cap.has_command = true;

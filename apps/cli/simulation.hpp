@@ -29,7 +29,7 @@ struct SimulationRequest {
   model::SweptSine stimulus = model::SweptSine::spatial();
   // Effects beyond the thesis model, any kind (sim/library_effects.hpp):
   // simulate() folds knob terms into `knob` and rig effects into the plant.
-  std::vector<sim::EffectSpec> effects;
+  std::vector<model::EffectSpec> effects;
 };
 
 struct SimulationResult {

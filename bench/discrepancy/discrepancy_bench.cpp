@@ -15,12 +15,14 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <numbers>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "knoblab/discovery/discrepancy.hpp"
 #include "knoblab/fit/fit_data.hpp"
+#include "knoblab/model/effect_table.hpp"
 #include "knoblab/sim/presets.hpp"
 #include "simulation.hpp"
 #include "sizing.hpp"
@@ -59,17 +61,25 @@ std::string fmt(const char* f, double a) {
 // detent term (A·sin(θ/P + S), 0.5–200 cycles/rev) takes them up whole and
 // reports them as its detents, which is the thesis model describing the data,
 // not a discrepancy.
+// 17.3 cycles/rev and 5 per rev: A·sin(θ/P + S) at P = 0.0578 and 0.2, as periods over position.
+const std::string kPeriod17 = model::shortest_number(2 * std::numbers::pi * 0.0578);
+const std::string kPeriod5 = model::shortest_number(2 * std::numbers::pi * 0.2);
+
 const Effect kEffects[] = {
-    {"gravity", true, [](double r) { return fmt("gravity:A=%.3g,phase=0.5", 4 * r); }},
-    {"spring", true, [](double r) { return fmt("spring:K=%.3g", 3 * r); }},
-    {"periodic_torque", true, [](double r) { return fmt("periodic_torque:A=%.3g,P=0.0578,S=0.3", 3 * r); }},
-    {"detent_shape", true, [](double r) { return fmt("detent_shape:a2=%.3g", 4 * r) + fmt(",b3=%.3g", 2 * r); }},
-    {"stribeck", false, [](double r) { return fmt("stribeck:excess=%.3g,v_s=0.5", 6 * r); }},
-    {"nonlinear_damping", false, [](double r) { return fmt("nonlinear_damping:c=%.3g,p=2", 0.5 * r); }},
-    {"position_friction", false, [](double r) { return fmt("position_friction:depth=%.3g,P=0.2,phase=0.4", 3 * r); }},
-    {"drift", false, [](double r) { return fmt("drift:rate=%.3g,t0=4", 0.8 * r); }},
+    {"gravity", true, [](double r) { return fmt("gravity:amplitude_Nm=%.3g,phase_rad=0.5", 4 * r); }},
+    {"spring", true, [](double r) { return fmt("spring:stiffness_Nm_per_rad=%.3g", 3 * r); }},
+    {"periodic_torque", true,
+     [](double r) { return fmt("periodic_torque:amplitude_Nm=%.3g", 3 * r) + ",period_rad=" + kPeriod17 + ",phase_rad=0.3"; }},
+    {"detent_shape", true, [](double r) { return fmt("detent_shape:a2_Nm=%.3g", 4 * r) + fmt(",b3_Nm=%.3g", 2 * r); }},
+    {"stribeck", false,
+     [](double r) { return fmt("stribeck:static_excess_Nm=%.3g,stribeck_velocity_rad_s=0.5", 6 * r); }},
+    {"nonlinear_damping", false, [](double r) { return fmt("nonlinear_damping:coefficient=%.3g,exponent=2", 0.5 * r); }},
+    {"position_friction", false,
+     [](double r) { return fmt("position_friction:depth_Nm=%.3g", 3 * r) + ",period_rad=" + kPeriod5 + ",phase_rad=0.4"; }},
+    {"drift", false, [](double r) { return fmt("drift:rate_Nm_per_s=%.3g,t0_s=4", 0.8 * r); }},
     // Stops at ±0.9 rad of the ±1 rad sweep: 6 r at the turn, nothing over 90 % of the travel.
-    {"endstop", false, [](double r) { return fmt("endstop:position=0.9,stiffness=%.3g", 60 * r); }},
+    {"endstop", false,
+     [](double r) { return fmt("endstop:position_rad=0.9,stiffness_Nm_per_rad=%.3g", 60 * r); }},
 };
 
 // Operators (a delay, a clip, a play, presliding): their setting is no torque
@@ -82,10 +92,10 @@ struct Operator {
 };
 
 const Operator kOperators[] = {
-    {"time_delay", bench::size_time_delay, "time_delay:delay=%.3g"},
-    {"saturation", bench::size_saturation, "saturation:limit=%.3g"},
-    {"hysteresis", bench::size_hysteresis, "hysteresis:presliding=%.3g"},
-    {"backlash", bench::size_backlash, "backlash:width=%.3g"},
+    {"time_delay", bench::size_time_delay, "time_delay:delay_s=%.3g"},
+    {"saturation", bench::size_saturation, "saturation:limit_Nm=%.3g"},
+    {"hysteresis", bench::size_hysteresis, "hysteresis:presliding_angle_rad=%.3g"},
+    {"backlash", bench::size_backlash, "backlash:width_rad=%.3g"},
 };
 constexpr double kOperatorRms = 2.0;  // × r
 
@@ -116,7 +126,7 @@ cli::SimulationResult simulated(const std::string& knob, const std::string& effe
   req.seconds = 8.0;
   req.rate_hz = 5000.0;
   req.seed = seed;
-  req.effects = sim::parse_effect_specs(effects);
+  req.effects = model::parse_effect_specs(effects);
   return cli::simulate(req, nullptr);
 }
 
@@ -202,7 +212,7 @@ int main(int argc, char** argv) {
           report(run_case({k, e.id, fmt(e.spec, setting)}, static_cast<std::uint64_t>(seed)));
         }
         if (only.empty() || only == "compliance") {
-          const char* spec = "compliance:stiffness=%.3g";
+          const char* spec = "compliance:stiffness_Nm_per_rad=%.3g";
           const auto excess = [&](double stiffness) {
             discovery::DiscrepancyOptions base_only;
             base_only.max_findings = 0;

@@ -18,7 +18,7 @@ TEST(DiscrepancyReportCli, WritesTheReportAndPrintsTheFigures) {
   ScratchDir dir;
   const auto csv = dir / "cogged.csv";
   const RunResult sim = run_knoblab({"simulate", "--knob", "moderate-detents", "--seconds", "8",
-                                     "--effects", "periodic_torque:A=0.001,P=0.0578,S=0.3",
+                                     "--effects", "periodic_torque:amplitude_Nm=0.001,period_rad=0.36316811075498007,phase_rad=0.3",
                                      "--out", csv.string()});
   ASSERT_EQ(sim.exit_code, 0) << sim.err;
   const auto report = dir / "report";
@@ -48,7 +48,7 @@ TEST(DiscrepancyReportCli, MinGainAboveTheFindingsGainLeavesThemTentative) {
   ScratchDir dir;
   const auto csv = dir / "cogged.csv";
   ASSERT_EQ(run_knoblab({"simulate", "--knob", "moderate-detents", "--seconds", "8", "--effects",
-                         "periodic_torque:A=0.001,P=0.0578,S=0.3", "--out", csv.string()}).exit_code, 0);
+                         "periodic_torque:amplitude_Nm=0.001,period_rad=0.36316811075498007,phase_rad=0.3", "--out", csv.string()}).exit_code, 0);
   const auto json = dir / "r.json";
   const RunResult r = run_knoblab({"discrepancy", "--input", csv.string(), "--min-gain", "99", "--json",
                                    json.string()});

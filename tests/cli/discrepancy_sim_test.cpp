@@ -20,7 +20,7 @@ discovery::DiscrepancyResult discover_with(const std::string& effects,
   req.knob_name = knob;
   req.knob = *sim::presets::knob(req.knob_name);
   req.seconds = 8.0;
-  req.effects = sim::parse_effect_specs(effects);
+  req.effects = model::parse_effect_specs(effects);
   const SimulationResult s = simulate(req, nullptr);
   return discovery::discover(fit::prepare(s.capture));
 }
@@ -44,7 +44,7 @@ TEST(DiscrepancySim, CleanKnobHasNoFinding) {
 
 TEST(DiscrepancySim, ASecondPeriodicTorqueIsNamedWithItsPeriod) {
   // 1 mN·m at 17.3 cycles/rev beside 11 mN·m detents at 12/rev.
-  const auto r = discover_with("periodic_torque:A=0.001,P=0.0578,S=0.3");
+  const auto r = discover_with("periodic_torque:amplitude_Nm=0.001,period_rad=0.36316811075498007,phase_rad=0.3");
   ASSERT_FALSE(r.findings.empty()) << discovery::to_json(r);
   const discovery::Finding& f = r.findings.front();
   EXPECT_EQ(f.effect, discovery::EffectId::PeriodicTorque) << discovery::to_json(r);
@@ -59,7 +59,7 @@ TEST(DiscrepancySim, ASecondPeriodicTorqueIsNamedWithItsPeriod) {
 }
 
 TEST(DiscrepancySim, StribeckFrictionIsNamed) {
-  const auto r = discover_with("stribeck:excess=0.0012,v_s=0.5");
+  const auto r = discover_with("stribeck:static_excess_Nm=0.0012,stribeck_velocity_rad_s=0.5");
   ASSERT_FALSE(r.findings.empty()) << discovery::to_json(r);
   EXPECT_EQ(r.findings.front().effect, discovery::EffectId::Stribeck) << discovery::to_json(r);
   EXPECT_GT(param(r.findings.front(), "static_excess_Nm"), 0.0);
@@ -71,7 +71,7 @@ TEST(DiscrepancySim, ATorqueChannelDelayIsNamedWithItsLength) {
   // band; compared on rows both models describe, the delay is found near its
   // length (0.65 ms measured; the clean knob's own best shift is −0.1 ms),
   // not at the third of it the reversal rows pulled it to.
-  const auto r = discover_with("time_delay:delay=0.00073");
+  const auto r = discover_with("time_delay:delay_s=0.00073");
   ASSERT_FALSE(r.findings.empty()) << discovery::to_json(r);
   const discovery::Finding& f = r.findings.front();
   EXPECT_EQ(f.effect, discovery::EffectId::TimeDelay) << discovery::to_json(r);
@@ -86,7 +86,7 @@ TEST(DiscrepancySim, AClippedTorqueSensorIsNamedWithItsLimit) {
   // The sensor clips at ±14.6 mN·m, under the knob's 22.6 mN·m peaks: 4.7 %
   // of the samples sit on the limit as recorded. The Table 6 low-pass rings
   // at each corner, so the flat tops are looked for before it.
-  const auto r = discover_with("saturation:limit=0.0146");
+  const auto r = discover_with("saturation:limit_Nm=0.0146");
   ASSERT_FALSE(r.findings.empty()) << discovery::to_json(r);
   const discovery::Finding& f = r.findings.front();
   EXPECT_EQ(f.effect, discovery::EffectId::Saturation) << discovery::to_json(r);
@@ -100,7 +100,7 @@ TEST(DiscrepancySim, PlayBeforeTheDetentMechanismIsNamedWithItsWidth) {
   // stands while the knob crosses the play, and the sensor reads next to
   // nothing. Discovery's mechanism must stand there too (the base fit's
   // breakaway level), not snap ahead on the detent's pull.
-  const auto r = discover_with("backlash:width=0.0032");
+  const auto r = discover_with("backlash:width_rad=0.0032");
   ASSERT_FALSE(r.findings.empty()) << discovery::to_json(r);
   const discovery::Finding& f = r.findings.front();
   EXPECT_EQ(f.effect, discovery::EffectId::Backlash) << discovery::to_json(r);
@@ -116,7 +116,7 @@ TEST(DiscrepancySim, ASofterGripperCouplingIsNamedComplianceWithItsStiffness) {
   // a delay only bend that ramp. The compliance model finds the knob standing
   // (twist-corrected speed) and predicts the wound-up torque from the motor's
   // motion (41.6 N·m/rad measured, ζ 0.51).
-  const auto r = discover_with("compliance:stiffness=55.7", "high-friction");
+  const auto r = discover_with("compliance:stiffness_Nm_per_rad=55.7", "high-friction");
   ASSERT_FALSE(r.findings.empty()) << discovery::to_json(r);
   const discovery::Finding& f = r.findings.front();
   EXPECT_EQ(f.effect, discovery::EffectId::Compliance) << discovery::to_json(r);
@@ -135,7 +135,7 @@ TEST(DiscrepancySim, ALargerButInconsistentGainDoesNotVetoAConsistentOne) {
   // but from a few blocks' breakaways (t < 0); the coupling's twist gains
   // less (6 % on the rows both describe) in every block (t 6.4). The
   // consistent one is kept, and the delay's larger gain lowers its confidence.
-  const auto r = discover_with("compliance:stiffness=16.7", "moderate-detents");
+  const auto r = discover_with("compliance:stiffness_Nm_per_rad=16.7", "moderate-detents");
   ASSERT_FALSE(r.findings.empty()) << discovery::to_json(r);
   const discovery::Finding& f = r.findings.front();
   EXPECT_EQ(f.effect, discovery::EffectId::Compliance) << discovery::to_json(r);
@@ -165,7 +165,7 @@ TEST(DiscrepancySim, AOncePerRevolutionTorqueOnAKnobWithoutDetentsIsNotCalledDet
   // periods inside the ±1 rad sweep. It must come back under the name of a
   // position trend, not sit in the base as detents. Over ±1 rad, sin θ and
   // θ − θ³/6 cannot be told apart: gravity or spring.
-  const auto r = discover_with("gravity:A=0.002", "high-inertia");
+  const auto r = discover_with("gravity:amplitude_Nm=0.002", "high-inertia");
   double A = -1.0;
   for (const auto& [n, v] : r.base.params)
     if (n == "A_pos") A = v;

@@ -81,7 +81,8 @@ TEST(Simulate, SameSeedSameCaptureOtherSeedOtherNoise) {
 // and it acts: the play-free, undelayed knob gives other samples.
 TEST(Simulate, TheEffectsAskedForAreInTheCaptureAndAct) {
   ScratchDir dir;
-  const std::string effects = "hysteresis:presliding=0.002;time_delay:delay=0.0005;offset:tau0=0.001";
+  const std::string effects =
+      "hysteresis:presliding_angle_rad=0.002;time_delay:delay_s=0.0005;offset:offset_Nm=0.001";
   RunResult r = run_knoblab({"simulate", "--knob", "moderate-detents", "--seconds", "0.5", "--effects", effects,
                              "--out", (dir / "with.csv").string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -92,11 +93,11 @@ TEST(Simulate, TheEffectsAskedForAreInTheCaptureAndAct) {
   const std::size_t at = with.find(key);
   ASSERT_NE(at, std::string::npos) << with.substr(0, 800);
   const std::string line = with.substr(at + key.size(), with.find('\n', at) - at - key.size());
-  const auto recorded = sim::parse_effect_specs(line), asked = sim::parse_effect_specs(effects);
+  const auto recorded = model::parse_effect_specs(line), asked = model::parse_effect_specs(effects);
   ASSERT_EQ(recorded.size(), asked.size()) << line;
   for (std::size_t i = 0; i < asked.size(); ++i) {
-    EXPECT_EQ(recorded[i].id, asked[i].id);
-    EXPECT_EQ(recorded[i].params, asked[i].params) << recorded[i].id;
+    EXPECT_EQ(recorded[i].effect, asked[i].effect);
+    EXPECT_EQ(recorded[i].params, asked[i].params) << recorded[i].id();
   }
   EXPECT_NE(data_lines(with), data_lines(read_file(dir / "without.csv")));
 }
@@ -156,7 +157,7 @@ TEST(Simulate, ParamsFileGivesTheSameKnobAsThePreset) {
 
 // Mistyped effect names get the list to choose from, in both commands.
 TEST(Simulate, AnUnknownEffectListsTheKnownOnesInSimulateAndDiscrepancy) {
-  const RunResult sim = run_knoblab({"simulate", "--knob", "moderate-detents", "--effects", "cogging:A=1"});
+  const RunResult sim = run_knoblab({"simulate", "--knob", "moderate-detents", "--effects", "cogging:amplitude_Nm=1"});
   EXPECT_EQ(sim.exit_code, 2);
   EXPECT_NE(sim.err.find("unknown effect 'cogging' (known: backlash,"), std::string::npos) << sim.err;
   const RunResult disc = run_knoblab({"discrepancy", "--input", "x.csv", "--effects", "cogging"});
@@ -310,7 +311,7 @@ TEST(Simulate, AKnobThatNeedsMoreTorqueThanTheLimitLosesTrackingAndTheCaptureFai
 // 0.1 rad past it (1.13 s) for 20 ms the capture ends.
 TEST(Simulate, AKnobHeldByItsEndStopLosesTrackingAsTheSweepPassesTheStop) {
   const RunResult r = run_knoblab({"simulate", "--knob", "moderate-detents", "--seconds", "2", "--effects",
-                                   "endstop:position=0.5,stiffness=10,damping=0.01"});
+                                   "endstop:position_rad=0.5,stiffness_Nm_per_rad=10,damping_Nm_s_per_rad=0.01"});
   EXPECT_EQ(r.exit_code, 1) << r.out;
   EXPECT_TRUE(has(r.err, "safety fault (tracking)")) << r.err;
   const std::string t = argument_after(r.err, "stopped at t = ");

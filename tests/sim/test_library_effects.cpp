@@ -18,70 +18,85 @@ using namespace knoblab;
 using namespace knoblab::sim;
 
 TEST(LibraryEffects, SpecsParseAndPrintBack) {
-  const auto specs = parse_effect_specs("stribeck:excess=0.002,v_s=0.1;gravity:A=3e-3");
+  const auto specs = model::parse_effect_specs(
+      "stribeck:static_excess_Nm=0.002,stribeck_velocity_rad_s=0.1;gravity:amplitude_Nm=3e-3");
   ASSERT_EQ(specs.size(), 2u);
-  EXPECT_EQ(specs[0].id, "stribeck");
-  EXPECT_DOUBLE_EQ(specs[0].params.at("excess"), 0.002);
-  EXPECT_DOUBLE_EQ(specs[0].params.at("v_s"), 0.1);
-  EXPECT_EQ(specs[1].params.at("A"), 3e-3);
-  EXPECT_EQ(parse_effect_specs(specs[0].text())[0].params, specs[0].params);
+  EXPECT_EQ(specs[0].id(), "stribeck");
+  EXPECT_DOUBLE_EQ(specs[0].value("static_excess_Nm"), 0.002);
+  EXPECT_DOUBLE_EQ(specs[0].value("stribeck_velocity_rad_s"), 0.1);
+  EXPECT_EQ(specs[1].value("amplitude_Nm"), 3e-3);
+  EXPECT_EQ(specs[1].value("phase_rad"), 0.0);  // the table's default
+  EXPECT_EQ(model::parse_effect_spec(specs[0].text()).params, specs[0].params);
 }
 
 // Named without the parameter that gives it a size, an effect would be zero.
 TEST(LibraryEffects, AnEffectWithoutItsSizeIsRefusedSayingWhichParameterItNeeds) {
   const auto why = [](const char* text) {
     try {
-      parse_effect_specs(text);
+      model::parse_effect_specs(text);
     } catch (const std::invalid_argument& e) {
       return std::string(e.what());
     }
     return std::string();
   };
-  EXPECT_NE(why("stribeck").find("effect 'stribeck' needs excess: without it the effect is zero "
-                                 "(its parameters: excess, v_s; e.g. 'stribeck:excess=…')"),
+  EXPECT_NE(why("stribeck").find("effect 'stribeck' needs static_excess_Nm: without it the effect is zero "
+                                 "(its parameters: static_excess_Nm, stribeck_velocity_rad_s; "
+                                 "e.g. 'stribeck:static_excess_Nm=…')"),
             std::string::npos)
       << why("stribeck");
-  EXPECT_NE(why("spring:theta0=0.1").find("needs one of K, K3"), std::string::npos) << why("spring:theta0=0.1");
-  EXPECT_NE(why("offset").find("needs tau0"), std::string::npos);
-  EXPECT_NE(why("cogging:A=1").find("unknown effect 'cogging' (known: backlash, compliance,"), std::string::npos)
-      << why("cogging:A=1");
-  EXPECT_NE(why("stribeck:speed=1").find("has no parameter 'speed' (its parameters: excess, v_s)"),
+  EXPECT_NE(why("spring:centre_rad=0.1").find("needs one of stiffness_Nm_per_rad, cubic_Nm_per_rad3"),
+            std::string::npos)
+      << why("spring:centre_rad=0.1");
+  EXPECT_NE(why("offset").find("needs offset_Nm"), std::string::npos);
+  EXPECT_NE(why("cogging:amplitude_Nm=1").find("unknown effect 'cogging' (known: backlash, compliance,"),
+            std::string::npos)
+      << why("cogging:amplitude_Nm=1");
+  EXPECT_NE(why("stribeck:speed=1").find(
+                "has no parameter 'speed' (its parameters: static_excess_Nm, stribeck_velocity_rad_s)"),
             std::string::npos)
       << why("stribeck:speed=1");
 }
 
 TEST(LibraryEffects, BadSpecsAreRejectedWithTheReason) {
-  for (const char* bad : {"cogging:A=1", "stribeck:speed=1", "stribeck:excess=abc",
-                          "stribeck:excess", "gravity:A=nan", "gravity:A="}) {
-    EXPECT_THROW(parse_effect_specs(bad), std::invalid_argument) << bad;
+  for (const char* bad : {"cogging:amplitude_Nm=1", "stribeck:speed=1", "stribeck:static_excess_Nm=abc",
+                          "stribeck:static_excess_Nm", "gravity:amplitude_Nm=nan", "gravity:amplitude_Nm=",
+                          "stribeck:excess=0.002"}) {
+    EXPECT_THROW(model::parse_effect_specs(bad), std::invalid_argument) << bad;
   }
 }
 
 TEST(LibraryEffects, ModelTermsFoldIntoTheKnob) {
   KnobParams k = *presets::knob("moderate-detents");
-  for (const auto& s : parse_effect_specs("spring:K=0.01,K3=0.5;detent_shape:a2=0.003,b3=-0.001")) {
-    EXPECT_TRUE(apply_to_knob(s, k)) << s.id;
+  for (const auto& s : model::parse_effect_specs(
+           "spring:stiffness_Nm_per_rad=0.01,cubic_Nm_per_rad3=0.5;detent_shape:a2_Nm=0.003,b3_Nm=-0.001")) {
+    EXPECT_TRUE(apply_to_knob(s, k)) << s.id();
   }
   EXPECT_DOUBLE_EQ(k.spring.K, 0.01);
   EXPECT_DOUBLE_EQ(k.spring.K3, 0.5);
   EXPECT_DOUBLE_EQ(k.detents.a[2], 0.003);
   EXPECT_DOUBLE_EQ(k.detents.b[3], -0.001);
   EXPECT_GE(k.detents.harmonics, 4u);
-  EXPECT_FALSE(apply_to_knob(parse_effect_specs("offset:tau0=1")[0], k));
-  EXPECT_THROW(make_knob_effect(parse_effect_specs("spring:K=1")[0]), std::invalid_argument);
+  EXPECT_FALSE(apply_to_knob(model::parse_effect_spec("offset:offset_Nm=1"), k));
+  EXPECT_THROW(make_knob_effect(model::parse_effect_spec("spring:stiffness_Nm_per_rad=1")), std::invalid_argument);
 }
 
 TEST(LibraryEffects, KnobEffectsAreTheModelTerms) {
   const KnobMotion m{0.7, -0.05, 3.0};
-  const auto stribeck = make_knob_effect(parse_effect_specs("stribeck:excess=0.002,v_s=0.1")[0]);
+  const auto effect = [](const char* text) { return make_knob_effect(model::parse_effect_spec(text)); };
+  const auto stribeck = effect("stribeck:static_excess_Nm=0.002,stribeck_velocity_rad_s=0.1");
   EXPECT_DOUBLE_EQ(stribeck->torque(m, 0.0), (model::Stribeck<double>{0.002, 0.1}.torque(-0.05)));
-  const auto gravity = make_knob_effect(parse_effect_specs("gravity:A=0.003,phase=0.2")[0]);
+  const auto gravity = effect("gravity:amplitude_Nm=0.003,phase_rad=0.2");
   EXPECT_DOUBLE_EQ(gravity->torque(m, 0.0), 0.003 * std::sin(0.9));
-  const auto periodic = make_knob_effect(parse_effect_specs("periodic_torque:A=0.001,P=0.05,S=1")[0]);
+  // A period of 0.1π rad: 20 per revolution, sin(θ/0.05 + φ).
+  const auto periodic = effect("periodic_torque:amplitude_Nm=0.001,period_rad=0.3141592653589793,phase_rad=1");
   EXPECT_DOUBLE_EQ(periodic->torque(m, 0.0), 0.001 * std::sin(0.7 / 0.05 + 1));
-  const auto drift = make_knob_effect(parse_effect_specs("drift:rate=1e-4,t0=2")[0]);
+  const auto bumpy = effect("position_friction:depth_Nm=0.002,period_rad=0.3141592653589793,phase_rad=1");
+  EXPECT_DOUBLE_EQ(bumpy->torque(m, 0.0), -0.002 * std::sin(0.7 / 0.05 + 1));
+  const auto drag = effect("nonlinear_damping:coefficient=0.01");  // exponent 2 by default
+  EXPECT_DOUBLE_EQ(drag->torque(m, 0.0), -0.01 * 0.05 * 0.05);
+  const auto drift = effect("drift:rate_Nm_per_s=1e-4,t0_s=2");
   EXPECT_DOUBLE_EQ(drift->torque(m, 5.0), -1e-4 * 3.0);
-  const auto offset = make_knob_effect(parse_effect_specs("offset:tau0=0.004")[0]);
+  const auto offset = effect("offset:offset_Nm=0.004");
   EXPECT_DOUBLE_EQ(offset->torque(m, 0.0), 0.004);
 }
 
@@ -91,7 +106,7 @@ TEST(LibraryEffects, SensorReadsTheModelPlusTheEffect) {
   PlantConfig c;
   c.knob = *presets::knob("moderate-detents");
   Plant p(c);
-  const auto spec = parse_effect_specs("stribeck:excess=0.003,v_s=0.3")[0];
+  const auto spec = model::parse_effect_spec("stribeck:static_excess_Nm=0.003,stribeck_velocity_rad_s=0.3");
   p.add_effect(make_knob_effect(spec));
   const model::Stribeck<double> stribeck{0.003, 0.3};
   const auto model = thesis_model(c.knob);
@@ -126,7 +141,7 @@ TEST(LibraryEffects, BacklashLeavesTheSensorEmptyWhileTheDriveCrossesThePlay) {
   c.knob.inertia.M = 1e-5;
   c.knob.friction = {0.003, 0.0, 0.003, 0.0};
   KnobParams& k = c.knob;
-  ASSERT_TRUE(apply_to_knob(parse_effect_specs("backlash:width=0.01")[0], k));
+  ASSERT_TRUE(apply_to_knob(model::parse_effect_spec("backlash:width_rad=0.01"), k));
   EXPECT_DOUBLE_EQ(k.backlash, 0.01);
   Plant p(c);
   test::PositionLoop loop;

@@ -25,7 +25,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-EffectSpec spec(const char* text) { return parse_effect_specs(text).at(0); }
+model::EffectSpec spec(const char* text) { return model::parse_effect_spec(text); }
 
 // One ADC step of the torque channel, N·m.
 double torque_lsb(const PlantConfig& c) {
@@ -58,7 +58,7 @@ double smooth_command(const Plant& p, double theta_ref, double omega_ref) {
 
 std::string rejection(const char* text) {
   try {
-    parse_effect_specs(text);
+    model::parse_effect_specs(text);
   } catch (const std::invalid_argument& e) {
     return e.what();
   }
@@ -69,19 +69,22 @@ std::string rejection(const char* text) {
 
 TEST(OperatorEffects, BadParametersAreRejectedWithTheReason) {
   const std::pair<const char*, const char*> bad[] = {
-      {"hysteresis:presliding=0", "presliding"},
-      {"hysteresis:presliding=0.5", "presliding"},
-      {"endstop:stiffness=1", "position"},
-      {"endstop:position=0.3", "stiffness"},
-      {"endstop:position=0.3,stiffness=1,damping=-1", "damping"},
-      {"compliance:zeta=0.1", "exactly one of stiffness and frequency"},
-      {"compliance:stiffness=10,frequency=50", "exactly one of stiffness and frequency"},
-      {"compliance:frequency=50,damping=0.01,zeta=0.1", "at most one of damping and zeta"},
-      {"compliance:frequency=-5", "> 0"},
-      {"time_delay:delay=-0.001", "torque behind the motion"},
-      {"time_delay:delay=1", "0.1 s"},
-      {"saturation:limit=0", "limit"},
-      {"saturation", "limit"},
+      {"hysteresis:presliding_angle_rad=0", "presliding_angle_rad must be in (0, 0.1] rad"},
+      {"hysteresis:presliding_angle_rad=0.5", "presliding_angle_rad must be in (0, 0.1] rad, not 0.5"},
+      {"endstop:stiffness_Nm_per_rad=1", "needs position_rad"},
+      {"endstop:position_rad=0.3", "needs stiffness_Nm_per_rad"},
+      {"endstop:position_rad=0.3,stiffness_Nm_per_rad=1,damping_Nm_s_per_rad=-1",
+       "damping_Nm_s_per_rad must be >= 0 N·m·s/rad (dissipative)"},
+      {"compliance:zeta=0.1", "needs one of stiffness_Nm_per_rad, frequency_hz"},
+      {"compliance:stiffness_Nm_per_rad=10,frequency_hz=50", "give stiffness_Nm_per_rad or frequency_hz, not both"},
+      {"compliance:frequency_hz=50,damping_Nm_s_per_rad=0.01,zeta=0.1",
+       "give damping_Nm_s_per_rad or zeta, not both"},
+      {"compliance:frequency_hz=-5", "frequency_hz must be > 0 Hz"},
+      {"time_delay:delay_s=-0.001", "torque behind the motion"},
+      {"time_delay:delay_s=1", "delay_s must be in [0, 0.1] s"},
+      {"saturation:limit_Nm=0", "limit_Nm must be > 0 N·m"},
+      {"saturation", "needs limit_Nm"},
+      {"backlash:width_rad=0.6", "width_rad must be in (0, 0.5] rad"},
   };
   for (const auto& [text, why] : bad) {
     const std::string what = rejection(text);
@@ -91,36 +94,36 @@ TEST(OperatorEffects, BadParametersAreRejectedWithTheReason) {
 
 TEST(OperatorEffects, EachFoldsWhereItActs) {
   KnobParams k = *presets::knob("moderate-detents");
-  EXPECT_TRUE(apply_to_knob(spec("hysteresis:presliding=0.002"), k));
-  EXPECT_TRUE(apply_to_knob(spec("endstop:position=0.5,stiffness=2,damping=0.01"), k));
+  EXPECT_TRUE(apply_to_knob(spec("hysteresis:presliding_angle_rad=0.002"), k));
+  EXPECT_TRUE(apply_to_knob(spec("endstop:position_rad=0.5,stiffness_Nm_per_rad=2,damping_Nm_s_per_rad=0.01"), k));
   EXPECT_DOUBLE_EQ(k.presliding, 0.002);
   EXPECT_DOUBLE_EQ(k.walls.lo, -0.5);
   EXPECT_DOUBLE_EQ(k.walls.hi, 0.5);
   EXPECT_DOUBLE_EQ(k.walls.K, 2.0);
   EXPECT_DOUBLE_EQ(k.walls.B, 0.01);
   EXPECT_TRUE(check(k).empty());
-  for (const char* rig : {"compliance:stiffness=5", "time_delay:delay=0.001", "saturation:limit=0.01"}) {
+  for (const char* rig : {"compliance:stiffness_Nm_per_rad=5", "time_delay:delay_s=0.001", "saturation:limit_Nm=0.01"}) {
     EXPECT_FALSE(apply_to_knob(spec(rig), k)) << rig;
     EXPECT_THROW(make_knob_effect(spec(rig)), std::invalid_argument) << rig;
   }
 
   PlantConfig c;
   c.knob = k;
-  EXPECT_FALSE(apply_to_plant(spec("offset:tau0=0.001"), c));
-  EXPECT_FALSE(apply_to_plant(spec("hysteresis:presliding=0.002"), c));
-  EXPECT_TRUE(apply_to_plant(spec("time_delay:delay=0.0015"), c));
-  EXPECT_TRUE(apply_to_plant(spec("saturation:limit=0.012"), c));
+  EXPECT_FALSE(apply_to_plant(spec("offset:offset_Nm=0.001"), c));
+  EXPECT_FALSE(apply_to_plant(spec("hysteresis:presliding_angle_rad=0.002"), c));
+  EXPECT_TRUE(apply_to_plant(spec("time_delay:delay_s=0.0015"), c));
+  EXPECT_TRUE(apply_to_plant(spec("saturation:limit_Nm=0.012"), c));
   EXPECT_DOUBLE_EQ(c.torque_sensor.delay, 0.0015);
   EXPECT_DOUBLE_EQ(c.torque_sensor.saturation, 0.012);
   // Stiffness alone keeps the coupling's damping ratio: c scales with √k.
   const CouplingParams stiff = c.coupling;
-  EXPECT_TRUE(apply_to_plant(spec("compliance:stiffness=4"), c));
+  EXPECT_TRUE(apply_to_plant(spec("compliance:stiffness_Nm_per_rad=4"), c));
   EXPECT_DOUBLE_EQ(c.coupling.stiffness, 4.0);
   EXPECT_NEAR(c.coupling.damping, stiff.damping * std::sqrt(4.0 / stiff.stiffness), 1e-15);
   // A knob side without inertia cannot be tuned to a frequency.
   PlantConfig massless;
   massless.knob.inertia.M = 0.0;
-  EXPECT_THROW(apply_to_plant(spec("compliance:frequency=50"), massless), std::invalid_argument);
+  EXPECT_THROW(apply_to_plant(spec("compliance:frequency_hz=50"), massless), std::invalid_argument);
 }
 
 TEST(OperatorEffects, ThePlantRejectsSettingsOutOfRange) {
@@ -169,7 +172,7 @@ TEST(OperatorEffects, TimeDelayShiftsTheTorqueChannelOnly) {
     PlantConfig c = test::quiet({});
     c.knob = *presets::knob("moderate-detents");
     Plant plain(c);
-    ASSERT_TRUE(apply_to_plant(spec(("time_delay:delay=" + std::to_string(delay)).c_str()), c));
+    ASSERT_TRUE(apply_to_plant(spec(("time_delay:delay_s=" + std::to_string(delay)).c_str()), c));
     Plant late(c);
     const auto lag = static_cast<std::size_t>(std::lround(delay / dt));
     test::PositionLoop loop;
@@ -198,7 +201,7 @@ TEST(OperatorEffects, SaturationClipsTheSensorAtTheLimit) {
   // 8 mN·m of friction through a 5 mN·m sensor: flat tops at ±5, the true
   // torque below the limit.
   PlantConfig c = coulomb_knob(0.008);
-  ASSERT_TRUE(apply_to_plant(spec("saturation:limit=0.005"), c));
+  ASSERT_TRUE(apply_to_plant(spec("saturation:limit_Nm=0.005"), c));
   Plant p(c);
   test::PositionLoop loop;
   const double dt = 1e-4, lsb = torque_lsb(c);
@@ -225,7 +228,7 @@ TEST(OperatorEffects, EndstopPushesBackBeyondItsPosition) {
   // stops at ±0.2 rad: beyond, the sensor reads the wall's K·overshoot.
   PlantConfig c = test::quiet({});
   c.knob.inertia.M = 1e-5;
-  ASSERT_TRUE(apply_to_knob(spec("endstop:position=0.2,stiffness=0.5,damping=0.002"), c.knob));
+  ASSERT_TRUE(apply_to_knob(spec("endstop:position_rad=0.2,stiffness_Nm_per_rad=0.5,damping_Nm_s_per_rad=0.002"), c.knob));
   Plant p(c);
   const double dt = 1e-4;
   for (const double target : {0.1, 0.3, -0.35, -0.15}) {
@@ -247,7 +250,7 @@ TEST(OperatorEffects, SofterCouplingRingsAtTheAskedFrequency) {
     PlantConfig c = test::quiet({});
     c.knob.inertia.M = 2e-5;
     c.motor.extra_inertia = 10.0;
-    ASSERT_TRUE(apply_to_plant(spec(("compliance:frequency=" + std::to_string(f) + ",zeta=0.03").c_str()), c));
+    ASSERT_TRUE(apply_to_plant(spec(("compliance:frequency_hz=" + std::to_string(f) + ",zeta=0.03").c_str()), c));
     EXPECT_NEAR(c.coupling.stiffness, 2e-5 * std::pow(2 * kPi * f, 2), 1e-9);
     Plant p(c);
     p.add_effect(std::make_unique<StepLoad>(0.01, 0.005));
@@ -281,7 +284,7 @@ TEST(OperatorEffects, HysteresisTurnsFrictionOverWithinThePreslidingAngle) {
   // loop's area is 4C·(A − θ_p) instead of Coulomb's 4C·A.
   const double C = 0.003, theta_p = 0.002, A = 0.05, dt = 1e-4, w = 2 * kPi * 0.5;
   PlantConfig c = coulomb_knob(C);
-  ASSERT_TRUE(apply_to_knob(spec("hysteresis:presliding=0.002"), c.knob));
+  ASSERT_TRUE(apply_to_knob(spec("hysteresis:presliding_angle_rad=0.002"), c.knob));
   Plant p(c);
   model::DahlFriction dahl;
   dahl.presliding = theta_p;
@@ -321,7 +324,7 @@ TEST(OperatorEffects, HysteresisLeavesTheStickBandHoldingTheKnob) {
   const double C = 0.003, theta_p = 0.002, A = 0.05, dt = 1e-4, w = 2 * kPi * 0.5;
   PlantConfig c = coulomb_knob(C);
   c.knob.stick = {0.01, 0.006, 0.006};
-  ASSERT_TRUE(apply_to_knob(spec("hysteresis:presliding=0.002"), c.knob));
+  ASSERT_TRUE(apply_to_knob(spec("hysteresis:presliding_angle_rad=0.002"), c.knob));
   Plant p(c);
   double last = p.state().knob_angle, area = 0.0, freed_at = std::nan("");
   int sticks = 0, crossings = 0;

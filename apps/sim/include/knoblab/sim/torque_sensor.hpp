@@ -5,7 +5,7 @@
 // * Scale: factory calibration 175.5 mN·m per 5 V.
 // * Saturation ±180 mN·m: the knobs' working range is "0–200 mNm" (§2.2) but
 //   §2.3.4 stresses the sensor's limited range; 180 mN·m = 5.13 V.
-//   The effect library's `saturation:limit=` sets it (model::saturate, the
+//   The effect library's `saturation:limit_Nm=` sets it (model::saturate, the
 //   clip discovery fits).
 // * Noise σ = 0.05 mN·m: §2.1.2.3 puts the sensor below 0.1 % peak-to-peak
 //   of full scale (0.18 mN·m p-p ≈ 6σ → σ ≈ 0.03 mN·m); rounded up for the
