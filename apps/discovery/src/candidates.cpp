@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <numbers>
 
+#include "knoblab/model/effect_table.hpp"
 #include "knoblab/model/periodogram.hpp"
 #include "knoblab/model/quantile.hpp"
 
@@ -316,60 +317,48 @@ std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& m,
 
 Params report_params(const ActiveEffect& e, const ExtendedModel& m) {
   const auto& q = e.params;
+  // A·sin(θ/P + S) as a positive amplitude, a period and a phase (with
+  // P < 0 it is A·sin(θ/|P| + π − S)).
   auto periodic = [&](double A, double P, double S) {
-    const double phase = std::remainder(S + (A < 0 ? kPi : 0.0), 2 * kPi);
-    return Params{{"amplitude_Nm", std::abs(A)},
-                  {"period_rad", 2 * kPi * std::abs(P)},
-                  {"cycles_per_rev", 1.0 / std::abs(P)},
-                  {"phase_rad", phase}};
+    const double phase = std::remainder((P < 0 ? kPi - S : S) + (A < 0 ? kPi : 0.0), 2 * kPi);
+    return std::vector<double>{std::abs(A), 2 * kPi * std::abs(P), 1.0 / std::abs(P), phase};
   };
+  // In the effect table's order of what discrepancy reports (its names).
+  const auto named = [&](const std::vector<double>& v) { return model::reported_values(e.id, v); };
   switch (e.id) {
-    case EffectId::Offset: return {{"offset_Nm", q[0]}};
+    case EffectId::Offset: return named({q[0]});
     case EffectId::Gravity: {
       const double phase = std::remainder(q[1] + (q[0] < 0 ? kPi : 0.0), 2 * kPi);
-      return {{"amplitude_Nm", std::abs(q[0])}, {"phase_rad", phase}};
+      return named({std::abs(q[0]), phase});
     }
-    case EffectId::Spring:
-      return {{"stiffness_Nm_per_rad", q[0]}, {"cubic_Nm_per_rad3", q[1]}, {"centre_rad", e.setting}};
-    case EffectId::PeriodicTorque: return periodic(q[0], q[1], q[2]);
+    case EffectId::Spring: return named({q[0], q[1], e.setting});
+    case EffectId::PeriodicTorque:
+    case EffectId::PositionFriction: return named(periodic(q[0], q[1], q[2]));
     case EffectId::DetentShape: {
-      Params p{{"cycles_per_rev", 1.0 / base_period(m)}};
+      std::vector<double> v{1.0 / base_period(m)};
       for (std::size_t k = 0; k + 2 <= kShapeHarmonics; ++k) {
-        p.emplace_back("h" + std::to_string(k + 2) + "_amplitude_Nm", std::hypot(q[2 * k], q[2 * k + 1]));
-        p.emplace_back("h" + std::to_string(k + 2) + "_cycles_per_rev",
-                       static_cast<double>(k + 2) / base_period(m));
+        v.push_back(std::hypot(q[2 * k], q[2 * k + 1]));
+        v.push_back(static_cast<double>(k + 2) / base_period(m));
       }
-      for (std::size_t k = 0; k + 2 <= kShapeHarmonics; ++k) {
-        p.emplace_back("a" + std::to_string(k + 2) + "_Nm", q[2 * k]);
-        p.emplace_back("b" + std::to_string(k + 2) + "_Nm", q[2 * k + 1]);
-      }
-      return p;
+      v.insert(v.end(), q.begin(), q.end());  // a2, b2, a3, …
+      return named(v);
     }
-    case EffectId::Stribeck:
-      return {{"static_excess_Nm", q[0]}, {"stribeck_velocity_rad_s", std::abs(q[1])}};
-    case EffectId::NonlinearDamping: return {{"coefficient", q[0]}, {"exponent", q[1]}};
-    case EffectId::PositionFriction: {
-      Params p = periodic(q[0], q[1], q[2]);
-      p[0].first = "depth_Nm";
-      return p;
-    }
-    case EffectId::Drift: return {{"rate_Nm_per_s", q[0]}, {"t0_s", e.setting}};
-    case EffectId::TimeDelay: return {{"delay_s", e.setting}};
-    case EffectId::Saturation: return {{"limit_Nm", e.setting}};
-    case EffectId::Backlash: return {{"width_rad", e.setting}};
-    case EffectId::Hysteresis: return {{"presliding_angle_rad", e.setting}};
-    case EffectId::Endstop: return {{"position_rad", e.setting}, {"stiffness_Nm_per_rad", q[0]}};
+    case EffectId::Stribeck: return named({q[0], std::abs(q[1])});
+    case EffectId::NonlinearDamping: return named({q[0], q[1]});
+    case EffectId::Drift: return named({q[0], e.setting});
+    case EffectId::TimeDelay:
+    case EffectId::Saturation:
+    case EffectId::Backlash:
+    case EffectId::Hysteresis: return named({e.setting});
+    case EffectId::Endstop: return named({e.setting, q[0]});
     case EffectId::Compliance: {
       // The ringing against the knob's inertia as this model fits it.
       const double M = std::abs(m.base[model::kM_acc]);
       const double wn = M > 0 ? std::sqrt(e.setting / M) : 0.0;
-      return {{"stiffness_Nm_per_rad", e.setting},
-              {"damping_Nm_s_per_rad", e.lag_s * e.setting},
-              {"frequency_hz", wn / (2 * kPi)},
-              {"zeta", e.lag_s * wn / 2.0}};
+      return named({e.setting, e.lag_s * e.setting, wn / (2 * kPi), e.lag_s * wn / 2.0});
     }
-    default: return {};
   }
+  return {};
 }
 
 namespace {

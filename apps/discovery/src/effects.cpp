@@ -2,30 +2,10 @@
 
 namespace knoblab::discovery {
 
-std::string_view effect_name(EffectId id) {
-  switch (id) {
-    case EffectId::Offset: return "offset";
-    case EffectId::Gravity: return "gravity";
-    case EffectId::Spring: return "spring";
-    case EffectId::PeriodicTorque: return "periodic_torque";
-    case EffectId::DetentShape: return "detent_shape";
-    case EffectId::Stribeck: return "stribeck";
-    case EffectId::NonlinearDamping: return "nonlinear_damping";
-    case EffectId::PositionFriction: return "position_friction";
-    case EffectId::Drift: return "drift";
-    case EffectId::TimeDelay: return "time_delay";
-    case EffectId::Saturation: return "saturation";
-    case EffectId::Backlash: return "backlash";
-    case EffectId::Hysteresis: return "hysteresis";
-    case EffectId::Endstop: return "endstop";
-    case EffectId::Compliance: return "compliance";
-  }
-  return "?";
-}
+std::string_view effect_name(EffectId id) { return model::effect_row(id).id; }
 
 std::optional<EffectId> parse_effect(std::string_view name) {
-  for (const EffectId id : kAllEffects)
-    if (effect_name(id) == name) return id;
+  if (const model::EffectRow* r = model::find_effect(name)) return r->effect;
   return std::nullopt;
 }
 

@@ -11,29 +11,6 @@
 
 namespace knoblab::discovery::detail {
 
-std::vector<std::string> param_names(EffectId id) {
-  switch (id) {
-    case EffectId::Offset: return {"offset_Nm"};
-    case EffectId::Gravity: return {"amplitude_Nm", "phase_rad"};
-    case EffectId::Spring: return {"stiffness_Nm_per_rad", "cubic_Nm_per_rad3"};
-    case EffectId::PeriodicTorque: return {"amplitude_Nm", "P", "phase_rad"};
-    case EffectId::DetentShape: {
-      std::vector<std::string> n;
-      for (std::size_t k = 2; k <= kShapeHarmonics; ++k) {
-        n.push_back("a" + std::to_string(k) + "_Nm");
-        n.push_back("b" + std::to_string(k) + "_Nm");
-      }
-      return n;
-    }
-    case EffectId::Stribeck: return {"static_excess_Nm", "stribeck_velocity_rad_s"};
-    case EffectId::NonlinearDamping: return {"coefficient", "exponent"};
-    case EffectId::PositionFriction: return {"depth_Nm", "P", "phase_rad"};
-    case EffectId::Drift: return {"rate_Nm_per_s"};
-    case EffectId::Endstop: return {"stiffness_Nm_per_rad"};
-    default: return {};  // operators: their setting is reported instead
-  }
-}
-
 bool ExtendedModel::has(EffectId id) const { return find(id) != nullptr; }
 
 const ActiveEffect* ExtendedModel::find(EffectId id) const {

@@ -32,9 +32,6 @@ struct ActiveEffect {
   double lag_s = 0.0;
 };
 
-// Names of an effect's continuous parameters, in order, as reported.
-std::vector<std::string> param_names(EffectId id);
-
 struct ExtendedModel {
   std::vector<double> base;  // Eq. 6, fit order
   std::vector<bool> base_fitted;
