@@ -18,9 +18,9 @@ constexpr double kPi = std::numbers::pi;
 
 template <typename... A>
 std::string format(const char* f, A... a) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf, f, a...);
-  return buf;
+  std::string out(static_cast<std::size_t>(std::snprintf(nullptr, 0, f, a...)), '\0');
+  std::snprintf(out.data(), out.size() + 1, f, a...);
+  return out;
 }
 
 // Least squares of the residual on the given columns (one per regressor).
@@ -371,6 +371,8 @@ std::string ordinal(int k) {
   return std::to_string(k) + suffix;
 }
 
+constexpr const char* kOneWay = "the recording turns one way only";
+
 // k when f is within 2 % of k times the base detent frequency, else 0.
 int detent_multiple(const ExtendedModel& m, double f) {
   if (!base_has_detents(m)) return 0;
@@ -381,29 +383,28 @@ int detent_multiple(const ExtendedModel& m, double f) {
 
 }  // namespace
 
-Explanation explain(const ActiveEffect& e, const ExtendedModel& m, double before, double after) {
+Explanation explain(const ActiveEffect& e, const ExtendedModel& m, const Motion& motion) {
   const Params p = report_params(e, m);
   auto v = [&](const char* name) {
     for (const auto& [n, x] : p)
       if (n == name) return x;
     return 0.0;
   };
-  const std::string gain = format(" Held-out RMS %.3g → %.3g mN·m.", before * 1e3, after * 1e3);
   constexpr double deg = 180.0 / kPi;
   switch (e.id) {
     case EffectId::Offset:
       return {"everywhere", format("The torque sits %.3g mN·m off zero at every position and speed: "
                                    "a constant bias (offset), sensor zero or preload.",
-                                   v("offset_Nm") * 1e3) + gain};
+                                   v("offset_Nm") * 1e3)};
     case EffectId::Gravity:
       return {"over position, once per revolution",
               format("The residual repeats once per revolution with %.3g mN·m amplitude: an "
                      "unbalanced mass or tilted axis (gravity), or a single detent per revolution.",
-                     v("amplitude_Nm") * 1e3) + gain};
+                     v("amplitude_Nm") * 1e3)};
     case EffectId::Spring:
       return {"over position, proportional to angle",
               format("The residual grows with angle, %.3g mN·m per radian: a restoring spring.",
-                     v("stiffness_Nm_per_rad") * 1e3) + gain};
+                     v("stiffness_Nm_per_rad") * 1e3)};
     case EffectId::PeriodicTorque: {
       const int k = detent_multiple(m, v("cycles_per_rev"));
       const std::string relation =
@@ -415,7 +416,7 @@ Explanation explain(const ActiveEffect& e, const ExtendedModel& m, double before
                      "%.3g°), %.3g mN·m, %s: cogging, a second detent track or screw ripple "
                      "(periodic_torque).",
                      v("cycles_per_rev"), v("period_rad") * deg, v("amplitude_Nm") * 1e3,
-                     relation.c_str()) + gain};
+                     relation.c_str())};
     }
     case EffectId::DetentShape: {
       std::string harmonics;
@@ -426,55 +427,79 @@ Explanation explain(const ActiveEffect& e, const ExtendedModel& m, double before
                             v((h + "_cycles_per_rev").c_str()));
       }
       return {format("over position, harmonics of the %.3g detents/rev", v("cycles_per_rev")),
-              "The detents are not sinusoidal: their harmonics are " + harmonics + " (detent_shape)." + gain};
+              "The detents are not sinusoidal: their harmonics are " + harmonics + " (detent_shape)."};
     }
     case EffectId::Stribeck:
       return {format("near zero speed (|θ̇| below about %.3g rad/s)", 2 * v("stribeck_velocity_rad_s")),
               format("Friction is %.3g mN·m above its Coulomb level near zero speed and falls off "
                      "over %.3g rad/s: Stribeck friction.",
-                     v("static_excess_Nm") * 1e3, v("stribeck_velocity_rad_s")) + gain};
+                     v("static_excess_Nm") * 1e3, v("stribeck_velocity_rad_s"))};
     case EffectId::NonlinearDamping:
       return {"over velocity, not proportional to it",
-              format("Damping grows as |θ̇|^%.2g, not linearly: nonlinear damping.", v("exponent")) + gain};
+              format("Damping grows as |θ̇|^%.2g, not linearly: nonlinear damping.", v("exponent"))};
     case EffectId::PositionFriction:
       return {format("over position, sign of velocity, %.3g cycles/rev", v("cycles_per_rev")),
               format("The friction level changes with position, ±%.3g mN·m at %.3g cycles per "
                      "revolution (position_friction).",
-                     v("depth_Nm") * 1e3, v("cycles_per_rev")) + gain};
+                     v("depth_Nm") * 1e3, v("cycles_per_rev"))};
     case EffectId::Drift:
       return {"over time",
               format("The friction level changes during the recording by %.3g mN·m per second "
                      "(drift: warming or wear).",
-                     v("rate_Nm_per_s") * 1e3) + gain};
+                     v("rate_Nm_per_s") * 1e3)};
     case EffectId::TimeDelay:
       return {"against the motion's derivatives (a lag)",
               format("The torque channel is %.3g ms %s the motion channels (time_delay).",
-                     std::abs(v("delay_s")) * 1e3, v("delay_s") > 0 ? "behind" : "ahead of") + gain};
+                     std::abs(v("delay_s")) * 1e3, v("delay_s") > 0 ? "behind" : "ahead of")};
     case EffectId::Saturation:
       return {"at the torque extremes",
-              format("The torque is clipped at ±%.3g mN·m (sensor saturation).", v("limit_Nm") * 1e3) + gain};
+              format("The torque is clipped at ±%.3g mN·m (sensor saturation).", v("limit_Nm") * 1e3)};
     case EffectId::Backlash:
+      if (!motion.reverses) {
+        return {motion.span + " (" + kOneWay + ")",
+                format("Lost motion of %.3g mrad (%.3g°) between the drive and the detent mechanism (backlash), "
+                       "felt most at %s; %s.",
+                       v("width_rad") * 1e3, v("width_rad") * deg, motion.span.c_str(), kOneWay)};
+      }
       return {"after reversals",
               format("After every reversal the torque falls toward zero for %.3g° of travel: "
                      "backlash (lost motion) of %.3g mrad between the drive and the detent "
                      "mechanism.",
-                     v("width_rad") * deg, v("width_rad") * 1e3) + gain};
+                     v("width_rad") * deg, v("width_rad") * 1e3)};
     case EffectId::Hysteresis:
+      if (!motion.reverses) {
+        return {motion.span + " (" + kOneWay + ")",
+                format("Friction turns over within about %.3g mrad instead of jumping (presliding hysteresis, "
+                       "Dahl), felt most at %s; %s.",
+                       3e3 * v("presliding_angle_rad"), motion.span.c_str(), kOneWay)};
+      }
       return {"after reversals",
               format("After a reversal friction turns over within about %.3g mrad instead of "
                      "jumping: presliding hysteresis (Dahl).",
-                     3e3 * v("presliding_angle_rad")) + gain};
+                     3e3 * v("presliding_angle_rad"))};
     case EffectId::Endstop:
       return {"at the extremes of the travel",
               format("Beyond ±%.3g° the torque climbs by %.3g mN·m per radian: a hard stop (endstop).",
-                     v("position_rad") * deg, v("stiffness_Nm_per_rad") * 1e3) + gain};
-    case EffectId::Compliance:
-      return {"after reversals and breakaways (ringing)",
-              format("The knob lags the motor by the coupling's twist: %.3g N·m/rad (damping ratio "
-                     "%.2g), ringing near %.3g Hz with the knob's inertia (compliance between "
-                     "actuator and knob).",
-                     v("stiffness_Nm_per_rad"), v("zeta"), v("frequency_hz")) + gain};
-    default: return {"", std::string(effect_name(e.id)) + "." + gain};
+                     v("position_rad") * deg, v("stiffness_Nm_per_rad") * 1e3)};
+    case EffectId::Compliance: {
+      // A damping ratio of 1 or more does not ring: the twist follows the
+      // torque through its lag c/k, whose corner is k/(2π·c).
+      const bool rings = v("zeta") < 1.0;
+      const std::string dynamics =
+          rings ? format("damping ratio %.2g), ringing near %.3g Hz with the knob's inertia", v("zeta"),
+                         v("frequency_hz"))
+                : format("damping ratio %.2g: overdamped, no ringing), the twist following the torque with "
+                         "a corner near %.3g Hz",
+                         v("zeta"), v("stiffness_Nm_per_rad") / (2 * kPi * v("damping_Nm_s_per_rad")));
+      const std::string sentence = format("The knob lags the motor by the coupling's twist: %.3g N·m/rad (%s "
+                                          "(compliance between actuator and knob)",
+                                          v("stiffness_Nm_per_rad"), dynamics.c_str());
+      if (!motion.reverses)
+        return {motion.span + " (" + kOneWay + ")", sentence + ", felt most at " + motion.span + "; " + kOneWay + "."};
+      return {rings ? "after reversals and breakaways (ringing)" : "after reversals and breakaways",
+              sentence + "."};
+    }
+    default: return {"", std::string(effect_name(e.id)) + "."};
   }
 }
 

@@ -24,10 +24,19 @@ std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& cur
 // An effect's parameters as reported (SI; periods also as cycles/rev).
 Params report_params(const ActiveEffect& e, const ExtendedModel& m);
 
+// What a finding's sentences may say of the recording: whether it reverses
+// (motion.hpp), and where the effect changed the model's torque most.
+struct Motion {
+  bool reverses = true;
+  std::string span;  // "t 0.02–0.31 s, θ −57…−40°" (motion.hpp)
+};
+
+// Where the residual was structured, and a sentence of what the effect is,
+// with its parameters (presentation units; the held-out figures are added
+// by discover()).
 struct Explanation {
   std::string where, sentence;
 };
-Explanation explain(const ActiveEffect& e, const ExtendedModel& m, double heldout_before,
-                    double heldout_after);
+Explanation explain(const ActiveEffect& e, const ExtendedModel& m, const Motion& motion);
 
 }  // namespace knoblab::discovery::detail

@@ -6,11 +6,14 @@
 #include <map>
 #include <cmath>
 #include <numbers>
+#include <cstdio>
 #include <span>
+#include <utility>
 
 #include "candidates.hpp"
 #include "extended_model.hpp"
 #include "forward_view.hpp"
+#include "motion.hpp"
 #include "knoblab/discovery/block_drop.hpp"
 #include "knoblab/discovery/discrepancy.hpp"
 #include "knoblab/discovery/whiteness.hpp"
@@ -183,6 +186,42 @@ double drop_consistency_of(const Score& before, const Score& after) {
   return drop_consistency(drop);
 }
 
+// Each finding's before/after figures over the rows the base and every
+// finding's model describe (a delay or a twist leaves some out): finding k's
+// after is finding k + 1's before. Its sentence ends with the held-out pair.
+void chain_figures(std::vector<Finding>& findings, const std::vector<Residuals>& chain, const Split& s) {
+  Residuals common{std::vector<double>(s.train.size(), 0.0), std::vector<double>(s.held.size(), 0.0), 0};
+  for (const Residuals& r : chain) {
+    for (std::size_t j = 0; j < r.train.size(); ++j)
+      if (std::isnan(r.train[j])) common.train[j] = std::nan("");
+    for (std::size_t j = 0; j < r.held.size(); ++j)
+      if (std::isnan(r.held[j])) common.held[j] = std::nan("");
+  }
+  std::vector<Score> on_common;
+  for (const Residuals& r : chain) on_common.push_back(score(r, common, s));
+  for (std::size_t k = 0; k < findings.size(); ++k) {
+    Finding& f = findings[k];
+    const Score &before = on_common[k], &after = on_common[k + 1];
+    f.rmse_before_Nm = before.rmse_train;
+    f.rmse_after_Nm = after.rmse_train;
+    f.heldout_rmse_before_Nm = before.rmse_held;
+    f.heldout_rmse_after_Nm = after.rmse_held;
+    f.bic_before = before.bic;
+    f.bic_after = after.bic;
+    f.heldout_rows = after.held_rows;
+    char buf[200];
+    std::snprintf(buf, sizeof buf, " Held-out RMS %.3g → %.3g mN·m", before.rmse_held * 1e3, after.rmse_held * 1e3);
+    f.explanation += buf;
+    if (after.held_rows < s.held.size()) {
+      std::snprintf(buf, sizeof buf, ", over the %zu of %zu held-out rows %s", after.held_rows, s.held.size(),
+                    findings.size() > 1 ? "every model from the base to the last finding describes"
+                                        : "both models describe");
+      f.explanation += buf;
+    }
+    f.explanation += ".";
+  }
+}
+
 Params summary_params(const ExtendedModel& m) {
   Params out;
   for (std::size_t k = 0; k < m.base.size(); ++k) {
@@ -341,6 +380,12 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
   out.train_rows = s.train.size();
   out.heldout_rows = s.held.size();
 
+  // The base, then the model after each finding: their error figures chain.
+  std::vector<Residuals> chain{base_res};
+  // Only a recording that reverses may be said to (the findings' sentences):
+  // one that turns back by more than 1 % of its range.
+  const bool reverses = detail::count_reversals(d.theta, 0.01 * (*hi - *lo)) > 0;
+
   const std::vector<EffectId> pool = opt.effects.empty() ? implemented_effects() : opt.effects;
   for (int round = 0; out.findings.size() < opt.max_findings; ++round) {
     // Rows the model does not describe add nothing to a candidate's start.
@@ -388,13 +433,7 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
     Finding f;
     f.effect = added.id;
     f.params = detail::report_params(added, best.model);
-    f.rmse_before_Nm = best.before.rmse_train;
-    f.rmse_after_Nm = best.score.rmse_train;
-    f.heldout_rmse_before_Nm = best.before.rmse_held;
-    f.heldout_rmse_after_Nm = best.score.rmse_held;
-    f.bic_before = best.before.bic;
-    f.bic_after = best.score.bic;
-    f.t_stat = best.t;
+    f.t_stat = best.t;  // the error figures: chained below, once every finding is known
     // Confidence: how consistent the held-out gain is (t), and how clearly
     // this effect beat the runner-up (another effect explaining the same
     // residual nearly as well makes the name less certain).
@@ -402,16 +441,18 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
     const double margin = std::clamp(1.0 - runner_up / best.gain, 0.0, 1.0);
     const double consistency = 1.0 - std::exp(-best.t / 4.0);
     f.confidence = std::clamp(consistency * (0.5 + 0.5 * margin), 0.0, 1.0);
+    m = best.model;
+    const Residuals before = std::exchange(current_res, residuals_of(m, s));
+    current = score(current_res, s);
+    chain.push_back(current_res);
+
     const detail::Explanation ex =
-        detail::explain(added, best.model, best.before.rmse_held, best.score.rmse_held);
+        detail::explain(added, m, {reverses, detail::effect_span(d, s.train, before.train, current_res.train)});
     f.where = ex.where;
     f.explanation = ex.sentence;
     out.findings.push_back(std::move(f));
-
-    m = best.model;
-    current_res = residuals_of(m, s);
-    current = score(current_res, s);
   }
+  chain_figures(out.findings, chain, s);
   // Below the reporting bar the terms found stay tentative and the final
   // model is the base (one-line rule: discrepancy.hpp, min_reported_gain).
   if (!out.findings.empty() && current.rmse_held > (1.0 - opt.min_reported_gain) * out.base.heldout_rmse_Nm) {

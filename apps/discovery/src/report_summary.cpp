@@ -116,7 +116,8 @@ SummaryText summary_text(const fit::FitData& data, const DiscrepancyResult& r,
   if (const std::string same = same_rows_sentence(r); !same.empty()) s.notes.push_back(same);
   if (r.findings.size() > 1)
     s.notes.push_back("–: only the error figures are known between findings (the residuals kept "
-                      "are the base model's and the final model's).");
+                      "are the base model's and the final model's); they are over the rows every model "
+                      "describes, as the findings' sentences.");
   return s;
 }
 

@@ -29,6 +29,7 @@ nlohmann::ordered_json findings_json(const std::vector<Finding>& findings) {
                  {"rmse_after_Nm", f.rmse_after_Nm},
                  {"heldout_rmse_before_Nm", f.heldout_rmse_before_Nm},
                  {"heldout_rmse_after_Nm", f.heldout_rmse_after_Nm},
+                 {"heldout_rows", f.heldout_rows},
                  {"bic_before", f.bic_before},
                  {"bic_after", f.bic_after},
                  {"heldout_t", f.t_stat}});

@@ -50,11 +50,15 @@ struct Finding {
   EffectId effect{};
   double confidence = 0.0;   // 0…1
   std::string where;         // where the residual was structured
-  std::string explanation;   // one plain sentence
-  Params params;             // the effect's parameters (SI)
+  std::string explanation;   // what it is, then its held-out figures
+  Params params;             // the effect's parameters (SI; the effect table's names)
+  // Before and after the effect, over the rows the base and every finding's
+  // model describe, so that they chain: one finding's after is the next one's
+  // before (a delay or a coupling's twist leaves some rows undescribed).
   double rmse_before_Nm = 0.0, rmse_after_Nm = 0.0;                  // training rows
   double heldout_rmse_before_Nm = 0.0, heldout_rmse_after_Nm = 0.0;  // held-out rows
   double bic_before = 0.0, bic_after = 0.0;
+  std::size_t heldout_rows = 0;  // the held-out rows those figures are over
   double t_stat = 0.0;       // held-out blocks' mean-square drops: drop_consistency
 };
 
