@@ -488,9 +488,10 @@ Explanation explain(const ActiveEffect& e, const ExtendedModel& m, const Motion&
       const std::string dynamics =
           rings ? format("damping ratio %.2g), ringing near %.3g Hz with the knob's inertia", v("zeta"),
                          v("frequency_hz"))
-                : format("damping ratio %.2g: overdamped, no ringing), the twist following the torque with "
+                : format("damping ratio %.2g: %s, no ringing), the twist following the torque with "
                          "a corner near %.3g Hz",
-                         v("zeta"), v("stiffness_Nm_per_rad") / (2 * kPi * v("damping_Nm_s_per_rad")));
+                         v("zeta"), v("zeta") > 1.0 ? "overdamped" : "critically damped",
+                         v("stiffness_Nm_per_rad") / (2 * kPi * v("damping_Nm_s_per_rad")));
       const std::string sentence = format("The knob lags the motor by the coupling's twist: %.3g N·m/rad (%s "
                                           "(compliance between actuator and knob)",
                                           v("stiffness_Nm_per_rad"), dynamics.c_str());
