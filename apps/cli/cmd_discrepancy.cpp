@@ -16,11 +16,14 @@ namespace knoblab::cli {
 const CommandSpec kDiscrepancySpec{
     "discrepancy",
     "--input FILE.csv | --capture ID --db FILE [--heldout FILE.csv | --heldout-capture ID]\n"
-    "  [--json OUT] [--report DIR] [--effects a,b,…] [--max-findings N] [--min-gain PCT]",
+    "  [--json OUT] [--model-out FILE.json] [--report DIR] [--effects a,b,…] [--max-findings N]\n"
+    "  [--min-gain PCT]",
     "Find what the thesis model leaves out of a capture: locate the structured residual,\n"
     "fit candidate effects (stribeck, backlash, detent_shape, periodic_torque, …) with the\n"
     "model, keep those that lower the error on held-out time blocks, and say so. A capture\n"
-    "from the store gets its result stored beside it.",
+    "from the store gets its result stored beside it. --model-out writes the final model\n"
+    "(base and kept effects) as a model file that knoblab simulate --params, knoblab ctl\n"
+    "load_model and hapticd --model take (docs/discrepancy.md).",
     {{"input", true, "interchange CSV"},
      {"capture", true, "capture id in the store"},
      {"db", true, "sqlite store"},
@@ -29,6 +32,7 @@ const CommandSpec kDiscrepancySpec{
      {"max-findings", true, "stop after N findings (default 4)"},
      {"min-gain", true, "held-out RMS cut, in %, the findings must earn together to be reported (default 20)"},
      {"json", true, "write the result as JSON (docs/discrepancy.md); '-' for stdout"},
+     {"model-out", true, "write the final model as a model file (simulate --params, ctl load_model)"},
      {"report", true, "directory for the report: residual plots before/after, whiteness, summary"},
      {"effects", true, "comma-separated candidate effect ids (default: all implemented)"},
      {"alpha", true, "accel (default: the α column, when the CSV has one) or encoder (θ'')"},
@@ -124,6 +128,10 @@ int run_discrepancy(const Args& args) {
   }
   const std::string json = discovery::to_json(r);
   if (auto out = args.get("json")) write_text(*out, json);
+  if (auto out = args.get("model-out")) {
+    write_text(*out, discovery::model_file_json(r, data.omega, in.title));
+    if (!json_to_stdout) std::printf("model file: %s\n", out->c_str());
+  }
   if (auto dir = args.get("report")) {
     discovery::ReportOptions ro;
     ro.title = in.title;

@@ -34,7 +34,7 @@ const CommandSpec kSimulateSpec{
     "Presets: 'knoblab simulate --list'.",
     {{"knob", true, "knob preset id (see --list)"},
      {"effects", true, "effects beyond the thesis model, 'id:k=v,…;…' (sim/library_effects.hpp)"},
-     {"params", true, "knob parameters JSON (the fit's output format)"},
+     {"params", true, "knob parameters JSON: a fit's result, a render model, or a model file with effects (discrepancy --model-out)"},
      {"seconds", true, "capture length, s (default 5, as the thesis)"},
      {"rate", true, "loop rate, Hz (default 5000; 1..20000)"},
      {"seed", true, "noise seed (default 1)"},
@@ -94,12 +94,14 @@ int run_simulate(const Args& args) {
     req.knob_name = *id;
   } else {
     const std::string path = args.require("params");
-    req.knob = read_knob_file(path);
+    KnobFile file = read_knob_file(path);
+    req.knob = file.knob;
+    req.effects = std::move(file.effects);  // a model file's; --effects adds to them
     req.knob_name = path;
   }
   if (auto text = args.get("effects")) {
     try {
-      req.effects = sim::parse_effect_specs(*text);
+      for (sim::EffectSpec& e : sim::parse_effect_specs(*text)) req.effects.push_back(std::move(e));
     } catch (const std::invalid_argument& e) {
       throw UsageError(std::string("--effects: ") + e.what());
     }
