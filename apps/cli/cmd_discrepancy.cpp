@@ -16,12 +16,15 @@ namespace knoblab::cli {
 const CommandSpec kDiscrepancySpec{
     "discrepancy",
     "(FILE.csv | --capture ID --db FILE.sqlite) [--heldout FILE.csv | --heldout-capture ID]\n"
-    "  [--json OUT.json|-] [--report DIR] [--effects LIST] [--max-findings N] [--min-gain PCT]",
+    "  [--json OUT.json|-] [--model-out FILE.json] [--report DIR] [--effects LIST]\n"
+    "  [--max-findings N] [--min-gain PCT]",
     "Find what the thesis model leaves out of a capture, and say which physics it is.\n"
     "Locates the structured residual, fits candidate effects (stribeck, backlash,\n"
     "detent_shape, periodic_torque, …) with the model, keeps those that lower the error on\n"
     "held-out time blocks, and says so (text in mN·m, degrees; the JSON in SI units). A\n"
-    "capture from the store gets its result stored beside it.",
+    "capture from the store gets its result stored beside it. --model-out writes the final\n"
+    "model (base and kept effects) as a model file that knoblab simulate --params, knoblab\n"
+    "ctl load_model and hapticd --model take (docs/discrepancy.md).",
     {{"capture", true, "capture id in the store (instead of FILE.csv)"},
      {"db", true, "sqlite store"},
      {"heldout", true, "another recording of the knob (CSV), held out whole instead of time blocks"},
@@ -29,6 +32,7 @@ const CommandSpec kDiscrepancySpec{
      {"max-findings", true, "stop after N findings (default 4)", "N"},
      {"min-gain", true, "held-out RMS cut, in %, the findings must earn together to be reported (default 20)", "PCT"},
      {"json", true, "write the result as JSON (docs/discrepancy.md); '-' for stdout"},
+     {"model-out", true, "write the final model as a model file (simulate --params, ctl load_model)"},
      {"report", true, "directory for the report: residual plots before/after, whiteness, summary"},
      {"effects", true, "comma-separated candidate effect ids (default: all implemented)", "LIST"},
      {"alpha", true, "accel (default: the α column, when the CSV has one) or encoder (θ'')", "accel|encoder"},
@@ -127,6 +131,10 @@ int run_discrepancy(const Args& args) {
   }
   const std::string json = discovery::to_json(r);
   if (auto out = args.get("json")) write_text(*out, json);
+  if (auto out = args.get("model-out")) {
+    write_text(*out, discovery::model_file_json(r, data.omega, in.title));
+    if (!json_to_stdout) std::printf("model file: %s\n", out->c_str());
+  }
   if (auto dir = args.get("report")) {
     discovery::ReportOptions ro;
     ro.title = in.title;

@@ -35,7 +35,7 @@ const CommandSpec kSimulateSpec{
     "Presets: 'knoblab simulate --list'.",
     {{"knob", true, "knob preset id (see --list)", "PRESET"},
      {"effects", true, "effects beyond the thesis model, 'id:k=v,…;…' (docs/discrepancy.md)", "SPECS"},
-     {"params", true, "a fit's result JSON (knoblab fit --json) or a render model"},
+     {"params", true, "a fit's result JSON, a render model, or a model file with effects (discrepancy --model-out)"},
      {"seconds", true, "capture length, s (default 5, as the thesis)"},
      {"rate", true, "loop rate, Hz (default 5000; 1..20000)"},
      {"seed", true, "noise seed (default 1)"},
@@ -98,12 +98,14 @@ int run_simulate(const Args& args) {
     req.knob_name = *id;
   } else {
     const std::string path = args.require("params");
-    req.knob = read_knob_file(path);
+    KnobFile file = read_knob_file(path);
+    req.knob = file.knob;
+    req.effects = std::move(file.effects);  // a model file's; --effects adds to them
     req.knob_name = path;
   }
   if (auto text = args.get("effects")) {
     try {
-      req.effects = sim::parse_effect_specs(*text);
+      for (sim::EffectSpec& e : sim::parse_effect_specs(*text)) req.effects.push_back(std::move(e));
     } catch (const std::invalid_argument& e) {
       throw UsageError(std::string("--effects: ") + e.what());
     }

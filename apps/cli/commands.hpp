@@ -17,7 +17,7 @@ struct Command {
 const std::vector<Command>& commands();
 
 extern const CommandSpec kSimulateSpec, kImportSpec, kExportSpec, kInspectSpec, kDemoSpec,
-    kListSpec, kConvertSpec, kFitSpec, kFitsSpec, kFitExportSpec, kDiscrepancySpec, kCtlSpec;
+    kListSpec, kConvertSpec, kFitSpec, kFitsSpec, kFitExportSpec, kDiscrepancySpec, kCtlSpec, kCompareSpec;
 int run_simulate(const Args&);
 int run_import(const Args&);
 int run_export(const Args&);
@@ -30,5 +30,6 @@ int run_fits(const Args&);
 int run_fit_export(const Args&);
 int run_discrepancy(const Args&);
 int run_ctl(const Args&);
+int run_compare(const Args&);
 
 }  // namespace knoblab::cli

@@ -14,21 +14,13 @@ FitRun fit_capture(const interchange::Capture& capture, const fit::PrepOptions& 
   return run;
 }
 
-namespace {
-
-struct Presentation {
-  const char* unit;
-  double scale;  // SI → presentation
-};
-
 Presentation presentation(std::string_view name) {
   if (name == "M_acc") return {"mN·m/(rad/s²)", 1e3};
   if (name.starts_with("B_vel")) return {"mN·m/(rad/s)", 1e3};
-  if (name.starts_with("C_vel") || name == "A_pos") return {"mN·m", 1e3};
+  if (name.starts_with("C_vel") || name == "A_pos" || name.starts_with("D_")) return {"mN·m", 1e3};
+  if (name == "dv") return {"rad/s", 1.0};
   return {"rad", 1.0};  // P_pos, S_pos
 }
-
-}  // namespace
 
 void print_fit(std::FILE* out, const fit::FitResult& r) {
   std::fprintf(out, "model %s, %zu samples, %d iterations, %.3f s\n",

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
+#include <string>
 #include <numbers>
 #include <algorithm>
 #include <stdexcept>
@@ -55,6 +57,24 @@ TEST(LibraryEffects, BadSpecsAreRejectedWithTheReason) {
                           "stribeck:excess", "gravity:A=nan", "gravity:A="}) {
     EXPECT_THROW(parse_effect_specs(bad), std::invalid_argument) << bad;
   }
+}
+
+TEST(LibraryEffects, ASpecFromAModelFileIsCheckedAsTheTextIs) {
+  const EffectSpec s = make_effect_spec("stribeck", {{"excess", 0.002}, {"v_s", 0.1}});
+  EXPECT_EQ(s.params, parse_effect_specs("stribeck:excess=0.002,v_s=0.1")[0].params);
+  const auto refused = [](const std::string& id, std::map<std::string, double> params, const std::string& why) {
+    try {
+      make_effect_spec(id, params);
+      ADD_FAILURE() << id << " accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+    }
+  };
+  refused("stribeck", {{"exces", 0.002}}, "has no parameter 'exces' (its parameters: excess, v_s)");
+  refused("stribeck", {{"v_s", 0.1}}, "needs excess");
+  refused("time_delay", {{"delay", -0.001}}, "delay must be >= 0 s");
+  refused("magnetism", {{"A", 1.0}}, "unknown effect 'magnetism'");
+  refused("offset", {{"tau0", std::nan("")}}, "'tau0' is not a finite number");
 }
 
 TEST(LibraryEffects, ModelTermsFoldIntoTheKnob) {

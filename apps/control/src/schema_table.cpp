@@ -69,6 +69,69 @@ constexpr std::array kHelloArgs = {
             "the motor in its safe state"),
 };
 
+// load_model / set_params "effects": the effect library's terms the renderer
+// can render (knoblab/model/effect_set.hpp), with the parameter names of
+// `knoblab simulate --effects` (sim/library_effects.hpp).
+constexpr std::array kOffsetArgs = {number("tau0", kRequired, -0.5, 0.5, "N·m", "constant torque")};
+constexpr std::array kGravityArgs = {
+    number("A", kRequired, -0.5, 0.5, "N·m", "once per revolution, τ = A·sin(θ + phase)"),
+    number("phase", kOptional, -1000, 1000, "rad", "its phase (default 0)"),
+};
+constexpr std::array kSpringArgs = {
+    number("K", kOptional, -10, 10, "N·m/rad", "τ = K·(θ − theta0) + K3·(θ − theta0)³"),
+    number("K3", kOptional, -1000, 1000, "N·m/rad³", "cubic stiffness"),
+    number("theta0", kOptional, -1000, 1000, "rad", "centre (default 0)"),
+};
+constexpr std::array<std::string_view, 2> kSpringKeys = {"K", "K3"};
+constexpr std::array kSpringGroups = {GroupRule{GroupRule::Kind::at_least_one, kSpringKeys}};
+constexpr std::array kPeriodicArgs = {
+    number("A", kRequired, -0.5, 0.5, "N·m", "τ = A·sin(θ/P + S), a torque unrelated to the detents"),
+    number("P", kRequired, 0.001, 100, "rad", "period: 1/P cycles per revolution"),
+    number("S", kOptional, -1000, 1000, "rad", "phase (default 0)"),
+};
+constexpr std::array kShapeArgs = {
+    number("a2", kOptional, -0.5, 0.5, "N·m", "detent harmonics: Σ a_k·sin(kφ) + b_k·cos(kφ), φ = θ/P_pos"),
+    number("b2", kOptional, -0.5, 0.5, "N·m", "2nd harmonic, cosine"),
+    number("a3", kOptional, -0.5, 0.5, "N·m", "3rd harmonic, sine"),
+    number("b3", kOptional, -0.5, 0.5, "N·m", "3rd harmonic, cosine"),
+    number("a4", kOptional, -0.5, 0.5, "N·m", "4th harmonic, sine"),
+    number("b4", kOptional, -0.5, 0.5, "N·m", "4th harmonic, cosine"),
+};
+constexpr std::array<std::string_view, 6> kShapeKeys = {"a2", "b2", "a3", "b3", "a4", "b4"};
+constexpr std::array kShapeGroups = {GroupRule{GroupRule::Kind::at_least_one, kShapeKeys}};
+constexpr std::array kStribeckArgs = {
+    number("excess", kRequired, 0, 0.5, "N·m", "friction above its sliding level near zero speed"),
+    number("v_s", kOptional, 1e-6, 100, "rad/s", "τ = sgn(θ̇)·excess·exp(−(θ̇/v_s)²) (default 1)"),
+};
+constexpr std::array kPowerDampingArgs = {
+    number("c", kRequired, 0, 1, "N·m/(rad/s)^p", "τ = sgn(θ̇)·c·abs(θ̇)^p"),
+    number("p", kOptional, 0.1, 4, "", "exponent (default 2)"),
+};
+constexpr std::array kEndstopArgs = {
+    number("position", kRequired, 0.001, 1000, "rad", "walls at ±position"),
+    number("stiffness", kRequired, 0, 100, "N·m/rad", "beyond a wall, τ = stiffness·depth"),
+    number("damping", kOptional, 0, 1, "N·m·s/rad", "+ damping·θ̇ while inside a wall"),
+};
+constexpr ObjectSchema kOffset{kOffsetArgs, {}};
+constexpr ObjectSchema kGravity{kGravityArgs, {}};
+constexpr ObjectSchema kSpring{kSpringArgs, kSpringGroups};
+constexpr ObjectSchema kPeriodic{kPeriodicArgs, {}};
+constexpr ObjectSchema kShape{kShapeArgs, kShapeGroups};
+constexpr ObjectSchema kStribeck{kStribeckArgs, {}};
+constexpr ObjectSchema kPowerDamping{kPowerDampingArgs, {}};
+constexpr ObjectSchema kEndstop{kEndstopArgs, {}};
+constexpr std::array kEffectsArgs = {
+    object("offset", kOptional, &kOffset, "a constant torque (offset)"),
+    object("gravity", kOptional, &kGravity, "a torque once per revolution (gravity)"),
+    object("spring", kOptional, &kSpring, "a restoring spring (spring)"),
+    object_list("periodic_torque", kOptional, {0, 4}, &kPeriodic, "position-periodic torques (periodic_torque)"),
+    object("detent_shape", kOptional, &kShape, "harmonics 2…4 of the detents (detent_shape)"),
+    object("stribeck", kOptional, &kStribeck, "Stribeck friction, outside the stick band (stribeck)"),
+    object("nonlinear_damping", kOptional, &kPowerDamping, "power-law damping, outside the stick band"),
+    object("endstop", kOptional, &kEndstop, "walls (endstop)"),
+};
+constexpr ObjectSchema kEffects{kEffectsArgs, {}};
+
 // load_model / set_params: the render model (Eq. 14) plus options.
 constexpr std::array kModelArgs = {
     number("M_acc", kRequired, 0, 0.01, "kg·m²", "inertia, τ = M_acc·θ̈"),
@@ -80,12 +143,14 @@ constexpr std::array kModelArgs = {
     number("D_pos", kOptional, 0, 0.5, "N·m", "static friction limit, positive torque"),
     number("K_vm", kOptional, 0, 100, "N·m/rad", "virtual-mass coupling stiffness"),
     number("B_vm", kOptional, 0, 1, "N·m·s/rad", "virtual-mass coupling damping"),
+    object("effects", kOptional, &kEffects,
+           "terms beyond Eq. 14 (knoblab discrepancy --model-out); set_params replaces the whole set"),
 };
 constexpr auto kParamArgs = all_optional(kModelArgs);
 constexpr std::array<std::string_view, 3> kStickKeys = {"dv", "D_neg", "D_pos"};
 constexpr std::array<std::string_view, 2> kVirtualMassKeys = {"K_vm", "B_vm"};
-constexpr std::array<std::string_view, 9> kParamKeys = {
-    "M_acc", "B_vel", "A_pos", "P_pos", "dv", "D_neg", "D_pos", "K_vm", "B_vm"};
+constexpr std::array<std::string_view, 10> kParamKeys = {
+    "M_acc", "B_vel", "A_pos", "P_pos", "dv", "D_neg", "D_pos", "K_vm", "B_vm", "effects"};
 constexpr std::array kModelGroups = {
     GroupRule{GroupRule::Kind::all_or_none, kStickKeys},
     GroupRule{GroupRule::Kind::all_or_none, kVirtualMassKeys},

@@ -10,6 +10,7 @@
 
 #include "candidates.hpp"
 #include "extended_model.hpp"
+#include "final_knob.hpp"
 #include "forward_view.hpp"
 #include "knoblab/discovery/block_drop.hpp"
 #include "knoblab/discovery/discrepancy.hpp"
@@ -424,6 +425,7 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
     current = base_score;
   }
   out.final_model = summary_of(m, current);
+  out.final_knob = detail::final_knob_of(m, base_fit.stick);
   if (out.findings.empty()) {
     out.same_rows = {out.base.heldout_rows, std::nan(""), std::nan("")};
   } else {

@@ -118,6 +118,44 @@ std::string EffectSpec::text() const {
   return out;
 }
 
+namespace {
+
+const Kind& kind_of(const std::string& id) {
+  const auto kind = known().find(id);
+  if (kind == known().end()) throw std::invalid_argument("unknown effect '" + id + "' (known: " + known_ids() + ")");
+  return kind->second;
+}
+
+void check_name(const EffectSpec& s, const Kind& kind, const std::string& name) {
+  if (std::find(kind.params.begin(), kind.params.end(), name) == kind.params.end())
+    throw std::invalid_argument("effect '" + s.id + "' has no parameter '" + name + "' (its parameters: " +
+                                joined(kind.params, ", ") + ")");
+}
+
+// A whole spec: its values' ranges, and one of the parameters that give it a size.
+void check_spec(const EffectSpec& s, const Kind& kind) {
+  check_values(s);  // first: its sentences are the more specific ones
+  const auto& needs = kind.needs_one_of;
+  if (std::none_of(needs.begin(), needs.end(), [&](const std::string& n) { return s.params.count(n) != 0; }))
+    throw std::invalid_argument("effect '" + s.id + "' needs " + (needs.size() > 1 ? "one of " : "") +
+                                joined(needs, ", ") + ": without " + (needs.size() > 1 ? "any" : "it") +
+                                " the effect is zero (its parameters: " + joined(kind.params, ", ") +
+                                "; e.g. '" + s.id + ":" + needs.front() + "=…')");
+}
+
+}  // namespace
+
+EffectSpec make_effect_spec(const std::string& id, const std::map<std::string, double>& params) {
+  const Kind& kind = kind_of(id);
+  EffectSpec s{id, params};
+  for (const auto& [name, v] : params) {
+    check_name(s, kind, name);
+    if (!std::isfinite(v)) throw std::invalid_argument("effect '" + id + "': '" + name + "' is not a finite number");
+  }
+  check_spec(s, kind);
+  return s;
+}
+
 std::vector<EffectSpec> parse_effect_specs(std::string_view text) {
   std::vector<EffectSpec> out;
   std::size_t at = 0;
@@ -129,9 +167,7 @@ std::vector<EffectSpec> parse_effect_specs(std::string_view text) {
     EffectSpec s;
     const std::size_t colon = one.find(':');
     s.id = std::string(one.substr(0, colon));
-    const auto kind = known().find(s.id);
-    if (kind == known().end())
-      throw std::invalid_argument("unknown effect '" + s.id + "' (known: " + known_ids() + ")");
+    const Kind& kind = kind_of(s.id);
     std::string_view rest = colon == std::string_view::npos ? "" : one.substr(colon + 1);
     while (!rest.empty()) {
       const std::size_t comma = std::min(rest.find(','), rest.size());
@@ -141,23 +177,14 @@ std::vector<EffectSpec> parse_effect_specs(std::string_view text) {
       if (eq == std::string_view::npos)
         throw std::invalid_argument("effect '" + s.id + "': expected name=value, got '" + std::string(kv) + "'");
       const std::string name(kv.substr(0, eq)), value(kv.substr(eq + 1));
-      const auto& params = kind->second.params;
-      if (std::find(params.begin(), params.end(), name) == params.end())
-        throw std::invalid_argument("effect '" + s.id + "' has no parameter '" + name + "' (its parameters: " +
-                                    joined(params, ", ") + ")");
+      check_name(s, kind, name);
       char* stop = nullptr;
       const double v = std::strtod(value.c_str(), &stop);
       if (value.empty() || *stop != '\0' || !std::isfinite(v))
         throw std::invalid_argument("effect '" + s.id + "': '" + name + "' is not a number: '" + value + "'");
       s.params[name] = v;
     }
-    check_values(s);  // first: its sentences are the more specific ones
-    const auto& needs = kind->second.needs_one_of;
-    if (std::none_of(needs.begin(), needs.end(), [&](const std::string& n) { return s.params.count(n) != 0; }))
-      throw std::invalid_argument("effect '" + s.id + "' needs " + (needs.size() > 1 ? "one of " : "") +
-                                  joined(needs, ", ") + ": without " + (needs.size() > 1 ? "any" : "it") +
-                                  " the effect is zero (its parameters: " + joined(kind->second.params, ", ") +
-                                  "; e.g. '" + s.id + ":" + needs.front() + "=…')");
+    check_spec(s, kind);
     out.push_back(std::move(s));
   }
   return out;

@@ -21,12 +21,15 @@
 #pragma once
 
 #include <limits>
+#include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "knoblab/discovery/effects.hpp"
 #include "knoblab/fit/fit_data.hpp"
+#include "knoblab/fit/knob_fit.hpp"
 
 namespace knoblab::discovery {
 
@@ -97,8 +100,25 @@ struct ResidualTrace {
   std::size_t size() const { return t.size(); }
 };
 
+// The final model as a knob a simulator or renderer takes: Eq. 6 with the
+// base fit's stick band, and each kept effect with the parameter names of
+// `knoblab simulate --effects` (sim/library_effects.hpp). Detents with a
+// negative amplitude are turned by half a period (A > 0, S + π, odd
+// harmonics negated): the same torque, and |A| as Eq. 14 renders it.
+struct EffectTerm {
+  EffectId effect{};
+  Params params;
+};
+struct FinalKnob {
+  std::vector<double> params;  // Eq. 6, fit order (model::kThesisParamNames)
+  bool detents = false;        // the detent term is fitted (else A = 0)
+  std::optional<fit::StickBand> stick;
+  std::vector<EffectTerm> effects;
+};
+
 struct DiscrepancyResult {
   ModelSummary base, final_model;
+  FinalKnob final_knob;  // final_model's terms
   std::vector<Finding> findings;  // empty: nothing is missing
   // Found, but together under min_reported_gain: not in the final model;
   // the held-out RMS with them added (NaN when there are none).
@@ -137,6 +157,12 @@ DiscrepancyResult discover(const fit::FitData& data, const fit::FitData& heldout
 
 // {"base": …, "findings": […], "final": …} with the names docs/discrepancy.md fixes.
 std::string to_json(const DiscrepancyResult& r, int indent = 2);
+
+// The final model as a model file (docs/discrepancy.md, "Model file"):
+// thesis6 params and stick, "effects", and "render", the base reduced to
+// Eq. 14 over the captured velocities `omega` as knoblab fit
+// --render-model reduces a fit. `input` names the capture in "source".
+std::string model_file_json(const DiscrepancyResult& r, std::span<const double> omega, const std::string& input);
 
 // When the base and the final model do not describe the same held-out rows,
 // one sentence giving both held-out RMS on the rows both describe;

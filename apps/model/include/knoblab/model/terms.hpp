@@ -97,6 +97,7 @@ struct Detents {
   std::array<T, kMaxHarmonic + 1> a{};  // a[k], b[k] for k >= 2; 0, 1 unused
   std::array<T, kMaxHarmonic + 1> b{};
   std::size_t harmonics = 1;  // highest harmonic evaluated (1 = pure sine)
+  bool operator==(const Detents&) const = default;
 
   T phase(const T& theta) const { return theta / P + S; }
   T torque(const T& theta) const {
@@ -135,6 +136,7 @@ inline double cycles_per_rev(const Detents<double>& d) { return 1.0 / d.P; }
 template <typename T>
 struct Spring {
   T K{}, theta0{}, K3{};
+  bool operator==(const Spring&) const = default;
   T torque(const T& theta) const {
     const T d = theta - theta0;
     return K * d + K3 * d * d * d;
@@ -147,6 +149,7 @@ template <typename T>
 struct Walls {
   T lo{-1e9}, hi{1e9};  // rad
   T K{}, B{};           // N·m/rad, N·m·s/rad
+  bool operator==(const Walls&) const = default;
   T torque(const T& theta, const T& omega) const {
     if (theta > hi) return K * (theta - hi) + B * omega;
     if (theta < lo) return K * (theta - lo) + B * omega;

@@ -58,6 +58,10 @@ struct EffectSpec {
 // of its effect's range (the message says which and why).
 std::vector<EffectSpec> parse_effect_specs(std::string_view text);
 
+// One spec from its id and parameters (a model file's effect, docs/
+// discrepancy.md), checked as parse_effect_specs checks one.
+EffectSpec make_effect_spec(const std::string& id, const std::map<std::string, double>& params);
+
 // Folds a spec into the knob when it is one of its terms (spring,
 // detent_shape, backlash, hysteresis, endstop) and returns true; false for
 // the others.
