@@ -81,7 +81,7 @@ std::string usage(const CommandSpec& spec) {
      << "\n\n" << spec.summary << "\n";
   if (!spec.options.empty()) os << "\noptions:\n";
   for (const auto& o : spec.options) {
-    std::string flag = "  --" + o.name + (o.takes_value ? " VALUE" : "");
+    std::string flag = "  --" + o.name + (o.takes_value ? " " + (o.metavar.empty() ? std::string("VALUE") : o.metavar) : "");
     if (flag.size() < 24) flag.resize(24, ' ');
     os << flag << " " << o.help << "\n";
   }

@@ -18,6 +18,7 @@ struct OptionSpec {
   std::string name;  // without the leading dashes
   bool takes_value;
   std::string help;
+  std::string metavar = {};  // what the value looks like in --help ("VALUE" when empty)
 };
 
 struct CommandSpec {

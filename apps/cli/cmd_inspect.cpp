@@ -7,19 +7,51 @@
 #include "knoblab/interchange/csv.hpp"
 #include "knoblab/interchange/sample.hpp"
 #include "knoblab/store/store.hpp"
+#include "map_summary.hpp"
 #include "store_open.hpp"
 #include "summary.hpp"
 
 namespace knoblab::cli {
+
+namespace {
+
+int inspect_map(const interchange::StaticMap& map, const std::string& name, bool json) {
+  const MapSummary s = summarize_map(map);
+  const double deg = 180.0 / std::numbers::pi;
+  if (json) {
+    std::printf("{\"kind\": \"static-map\", \"points\": %zu, \"theta_min_rad\": %.9g, \"theta_max_rad\": %.9g, "
+                "\"spacing_rad\": %.9g, \"torque_min_Nm\": %.9g, \"torque_max_Nm\": %.9g, \"torque_mean_Nm\": %.9g, "
+                "\"torque_rms_Nm\": %.9g, \"harmonics\": [",
+                s.points, s.theta_min, s.theta_max, s.spacing, s.torque_min, s.torque_max, s.torque_mean, s.torque_rms);
+    for (std::size_t i = 0; i < s.harmonics.size(); ++i)
+      std::printf("%s{\"cycles_per_rev\": %d, \"amplitude_Nm\": %.9g, \"power\": %.6g}", i ? ", " : "",
+                  s.harmonics[i].cycles_per_rev, s.harmonics[i].amplitude, s.harmonics[i].power);
+    std::printf("]}\n");
+    return 0;
+  }
+  std::printf("%s: static map of %zu positions, %.2f° … %.2f° (median spacing %.3f°)\n", name.c_str(), s.points,
+              s.theta_min * deg, s.theta_max * deg, s.spacing * deg);
+  std::printf("  torque     %.3f … %.3f mN·m, mean %.3f mN·m, rms %.3f mN·m\n", s.torque_min * 1e3, s.torque_max * 1e3,
+              s.torque_mean * 1e3, s.torque_rms * 1e3);
+  std::printf("  spectrum   strongest harmonics (cycles/rev: amplitude, share of torque variance):\n");
+  for (const auto& h : s.harmonics)
+    std::printf("             %4d: %8.3f mN·m  %3.0f%%\n", h.cycles_per_rev, h.amplitude * 1e3, h.power * 100);
+  return 0;
+}
+
+}  // namespace
 
 const CommandSpec kInspectSpec{
     "inspect", "FILE.csv | --capture ID --db FILE [--json]",
     "Summarise a recording: length, rate, ranges, and the strongest position-periodic\n"
     "torque (detents) as cycles per revolution from the torque-versus-position spectrum;\n"
     "the loop's flags (amplifier, fault, e-stop, torque limit) and an incomplete\n"
-    "capture's end reason when the file has them.",
-    {{"capture", true, "capture id in the store"},
-     {"db", true, "sqlite store"},
+    "capture's end reason when the file has them. A static map ('# kind: static-map', from\n"
+    "convert --map-over-rev): its points and the strongest whole-number harmonics of\n"
+    "torque over the revolution.\n"
+    "Example: knoblab inspect map.csv --json",
+    {{"capture", true, "capture id in the store", "ID"},
+     {"db", true, "sqlite store", "FILE"},
      {"json", false, "print the summary as JSON (SI units)"}},
     0, 1};
 
@@ -29,7 +61,9 @@ int run_inspect(const Args& args) {
   if (!args.positionals().empty()) {
     if (args.has("capture")) throw UsageError("give a FILE or --capture, not both");
     name = args.positionals()[0];
-    capture = interchange::read_csv(name);
+    interchange::Recording r = interchange::read_recording(name);
+    if (const auto* map = std::get_if<interchange::StaticMap>(&r)) return inspect_map(*map, name, args.has("json"));
+    capture = std::move(std::get<interchange::Capture>(r));
   } else {
     const std::string id = args.require("capture");
     store::Store db = open_store_to_read(args.require("db"));
