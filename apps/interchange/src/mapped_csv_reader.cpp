@@ -13,7 +13,6 @@
 #include "csv_fields.hpp"
 #include "knoblab/interchange/csv.hpp"
 #include "knoblab/interchange/mapped_csv.hpp"
-#include "knoblab/interchange/number_text.hpp"
 #include "line_reader.hpp"
 
 namespace knoblab::interchange {
@@ -226,6 +225,7 @@ MappedCsv read_mapped_csv(const std::filesystem::path& path, const std::vector<C
       std::find_if(mapping.begin(), mapping.end(), [](const ColumnMapping& m) { return m.channel == kT; }) -
       mapping.begin());
   std::size_t blank_line = 0, prev_t_line = 0;
+  std::string prev_t_text;
   while (lines.next(line)) {
     const std::string_view sv = trim(line);
     if (sv.empty()) {
@@ -259,10 +259,11 @@ MappedCsv read_mapped_csv(const std::filesystem::path& path, const std::vector<C
       out.channels[mapping[k].channel].push_back(v);
     }
     const auto& t = out.channels[kT];
+    const std::string& t_text = fields[column_of[t_index]];
     if (prev_t_line != 0 && !(t.back() > t[t.size() - 2]))
       fail(column_of[t_index] + 1, "column '" + mapping[t_index].source + "': time not strictly increasing: " +
-                                       fields[column_of[t_index]] + " after " + shortest(t[t.size() - 2] / mapping[t_index].unit.scale) +
-                                       " at line " + std::to_string(prev_t_line));
+                                       t_text + " after " + prev_t_text + " at line " + std::to_string(prev_t_line));
+    prev_t_text = t_text;
     prev_t_line = lines.line_number();
   }
   if (out.channels[kT].size() < kMinRows)
