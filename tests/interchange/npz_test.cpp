@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <random>
 
 #include "knoblab/interchange/array_file.hpp"
 #include "knoblab/interchange/npy.hpp"
@@ -95,6 +96,30 @@ TEST(Npz, BrokenArchivesSayWhatIsWrong) {
   many[many.size() - 12] = static_cast<char>(0xff);  // entry count in the end record
   EXPECT_NE(error_of(many).find("members claimed, but the central directory holds only"), std::string::npos)
       << error_of(many);
+}
+
+// Random byte flips in a good archive (and the .npy inside it): a MatError
+// or a result, never a crash, never another exception.
+TEST(Npz, RandomCorruptionGivesAMatErrorOrAResultNeverACrash) {
+  const std::string npy_bytes = npy::f8("(2, 3)", {1, 2, 3, 4, 5, 6});
+  const std::string good = npy::zip({{"a.npy", npy_bytes, false}, {"b.npy", npy::f8("(2,)", {7, 8}), true}});
+  MatLimits limits;
+  limits.max_inflated_bytes = 1 << 20;
+  std::mt19937 rng(11);
+  std::size_t refused = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const std::string& base = trial % 2 ? good : npy_bytes;
+    std::string bytes = base;
+    const int flips = 1 + static_cast<int>(rng() % 4);
+    for (int f = 0; f < flips; ++f) bytes[rng() % bytes.size()] = static_cast<char>(rng() & 0xff);
+    try {
+      if (trial % 2) parse_npz(bytes, "a.npz", limits);
+      else parse_npy(bytes, "a.npy", limits);
+    } catch (const MatError&) {
+      ++refused;
+    }
+  }
+  EXPECT_GT(refused, 10000u);  // most flips break something the readers check
 }
 
 }  // namespace

@@ -346,7 +346,8 @@ Capture parse_csv(std::istream& in, std::string_view source_name) {
   if (auto* c = std::get_if<Capture>(&r)) return std::move(*c);
   throw CsvError(std::string(source_name), parser.map_line(), 0,
                  "a static map (torque over position, no time stamps), not a recording over time: "
-                 "'knoblab inspect' reads it; fit, import and discrepancy need a recording over time");
+                 "'knoblab inspect' reads it; fit, import and discrepancy need a recording over time "
+                 "(to fit a knob's detents, record it turning slowly instead)");
 }
 
 namespace {

@@ -70,7 +70,8 @@ class MatError : public std::runtime_error {
   std::string reason_;
 };
 
-// Every named top-level variable, in file order.
+// Every named top-level variable, in file order (v7.3: in name order, as
+// HDF5 lists them).
 std::vector<MatArray> parse_mat(std::string_view bytes, std::string_view source_name,
                                 const MatLimits& limits = {});
 std::vector<MatArray> read_mat(const std::filesystem::path& path, const MatLimits& limits = {});
