@@ -13,17 +13,17 @@ namespace knoblab::cli {
 
 namespace {
 
-// From the CSV named by `file_key`, or the capture id under `id_key` in --db.
-std::optional<CaptureInput> read_from(const Args& args, const std::string& file_key,
-                                      const std::string& id_key) {
+// From the CSV `file` names, or the capture id under `id_key` in --db.
+std::optional<CaptureInput> read_from(const Args& args, const std::optional<std::string>& file,
+                                      const std::string& file_words, const std::string& id_key) {
   CaptureInput in;
-  if (auto input = args.get(file_key)) {
-    if (args.has(id_key)) throw UsageError("give --" + file_key + " or --" + id_key + ", not both");
+  if (const auto& input = file) {
+    if (args.has(id_key)) throw UsageError("give " + file_words + " or --" + id_key + ", not both");
     in.capture = interchange::read_csv(*input);
     in.title = std::filesystem::path(*input).filename().string();
   } else if (auto id = args.get(id_key)) {
     in.db.emplace(open_store_to_add(args.require("db")));
-    in.capture_id = std::stoll(*id);
+    in.capture_id = parse_id("--" + id_key, *id);
     const auto info = in.db->capture_info(*in.capture_id);
     if (!info) throw std::runtime_error("no capture " + *id + " in the store");
     in.capture = in.db->load_samples(*in.capture_id);
@@ -37,13 +37,13 @@ std::optional<CaptureInput> read_from(const Args& args, const std::string& file_
 }  // namespace
 
 CaptureInput read_capture_input(const Args& args) {
-  std::optional<CaptureInput> in = read_from(args, "input", "capture");
-  if (!in) throw UsageError("give --input FILE.csv or --capture ID --db FILE");
+  std::optional<CaptureInput> in = read_from(args, args.input(), "a FILE.csv", "capture");
+  if (!in) throw UsageError("give a FILE.csv (or --input FILE.csv) or --capture ID --db FILE.sqlite");
   return std::move(*in);
 }
 
 std::optional<CaptureInput> read_heldout_input(const Args& args) {
-  return read_from(args, "heldout", "heldout-capture");
+  return read_from(args, args.get("heldout"), "--heldout", "heldout-capture");
 }
 
 fit::PrepOptions prep_options(const Args& args) {

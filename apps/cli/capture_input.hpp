@@ -1,5 +1,5 @@
-// What `fit` and `discrepancy` read and write: a capture from --input FILE.csv
-// or --capture ID --db FILE, and text to a file or stdout ('-').
+// What `fit` and `discrepancy` read and write: a capture from FILE.csv (or
+// --input FILE.csv) or --capture ID --db FILE, and text to a file or stdout ('-').
 #pragma once
 
 #include <cstdint>

@@ -23,9 +23,10 @@
 namespace knoblab::cli {
 
 const CommandSpec kConvertSpec{
-    "convert", "IN OUT.csv --columns NAMES|MAPPING [OPTIONS] | IN OUT.csv --map-over-rev [OPTIONS]",
-    "Convert an outside recording to interchange CSV. IN is a MATLAB MAT-file (v5, -v7 or\n"
-    "-v7.3), a NumPy .npy or .npz, or another tool's CSV (told apart by content).\n"
+    "convert", "IN OUT.csv (--columns NAMES|MAPPING | --map-over-rev) [OPTIONS]",
+    "Convert an outside recording to interchange CSV.\n"
+    "IN is a MATLAB MAT-file (v5, -v7 or -v7.3), a NumPy .npy or .npz, or another tool's CSV\n"
+    "(told apart by content).\n"
     "Arrays: --columns names the channel each matrix row (or column) holds: t, theta,\n"
     "omega, alpha, torque, command, or - to skip one; for a cell array each name takes one\n"
     "row of cells and the cell columns (segments) are joined in order.\n"
@@ -35,12 +36,7 @@ const CommandSpec kConvertSpec{
     "unit); none means SI. Time is shifted to start at 0; omega and alpha, when not given,\n"
     "are derived from theta. --map-over-rev: a vector of N values over one revolution\n"
     "(position i at 2*pi*i/N) becomes a static map (theta,torque; '# kind: static-map').\n"
-    "Examples (docs/interchange.md):\n"
-    "  knoblab convert slow2/nocomp_0.mat nocomp_0.csv --columns t,theta,torque \\\n"
-    "      --counts-per-rev 8192 --torque-scale 0.0551 --unwrap --knob odrive-gimbal\n"
-    "  knoblab convert log.csv k.csv --columns time_ms=t:ms,angle_deg=theta:deg,torque_mNm=torque:mN*m\n"
-    "  knoblab convert coggingmap_0/cogging_measure_final_a_16.npy map.csv --map-over-rev \\\n"
-    "      --torque-scale 0.0551 --missing 0",
+    "More in docs/interchange.md.",
     {{"columns", true, "arrays: channel of each row (or column), e.g. t,theta,torque or -,t,theta,torque; "
                        "CSV: SOURCE=CHANNEL[:UNIT],... e.g. time_ms=t:ms,angle=theta:deg,i_A=torque:*0.0551",
       "NAMES|MAPPING"},
@@ -57,10 +53,14 @@ const CommandSpec kConvertSpec{
      {"delimiter", true, "CSV: the field delimiter, e.g. ';' (default: the one the header uses)", ",|;|tab"},
      {"map-over-rev", false, "IN holds one value per position over one revolution: write a static map"},
      {"missing", true, "with --map-over-rev: the value that marks a position not measured, e.g. 0 or nan; "
-                       "those positions are left out", "VALUE"},
-     {"knob", true, "knob name for the '# knob:' line (import files it under this name), e.g. odrive-gimbal",
-      "NAME"}},
-    2, 2};
+                       "those positions are left out", "X|nan"},
+     {"knob", true, "knob name for the '# knob:' line (import files it under this name), e.g. odrive-gimbal"}},
+    2, 2, true,
+    {"knoblab convert slow2/nocomp_0.mat nocomp_0.csv --columns t,theta,torque --counts-per-rev 8192 "
+     "--torque-scale 0.0551 --unwrap",
+     "knoblab convert log.csv k.csv --columns time_ms=t:ms,angle_deg=theta:deg,torque_mNm=torque:mN*m",
+     "knoblab convert coggingmap_0/cogging_measure_final_a_16.npy map.csv --map-over-rev --torque-scale 0.0551 "
+     "--missing 0"}};
 
 namespace {
 

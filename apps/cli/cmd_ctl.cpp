@@ -373,13 +373,15 @@ const CommandSpec kCtlSpec{
     "ctl", "[--socket PATH] (COMMAND [key=value ...] | --json JSON | --watch [--events LIST] [--telemetry])",
     ctl_summary(),
     {{"socket", true, "hapticd's control socket (default $KNOBLAB_SOCKET, else /run/knoblab/hapticd.sock)"},
-     {"json", true, "the request as {\"command\": NAME, \"args\": {...}}"},
+     {"json", true, "the request as {\"command\": NAME, \"args\": {...}}", "REQUEST"},
      {"timeout", true, "seconds to wait for hapticd's reply (default 5)"},
      {"watch", false, "print events as JSON lines until interrupted"},
-     {"events", true, "--watch: comma-separated event names (default *, all)"},
+     {"events", true, "--watch: comma-separated event names (default *, all)", "LIST"},
      {"telemetry", false, "--watch: also print the telemetry ring's records"},
-     {"count", true, "--watch: stop after this many lines"}},
-    0, 4096};
+     {"count", true, "--watch: stop after this many lines", "N"}},
+    0, 4096, false,
+    {"knoblab ctl get_state", "knoblab ctl load_model M_acc=1.3e-5 B_vel=2e-4 A_pos=0.01 P_pos=0.05",
+     "knoblab ctl --watch --events state,fault_latched"}};
 
 int run_ctl(const Args& args) {
   const double seconds = args.number("timeout", 5.0);

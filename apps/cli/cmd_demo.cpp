@@ -20,13 +20,15 @@
 namespace knoblab::cli {
 
 const CommandSpec kDemoSpec{
-    "demo", "[--db FILE] [--seconds S] [--rate HZ]",
-    "Capture the five thesis knobs in simulation (Table 3 swept sine through the PID),\n"
-    "store them, fit the knob model to each and compare with the truth and Table 7.",
+    "demo", "[--db FILE.sqlite] [--seconds S] [--rate HZ]",
+    "Capture, store and fit the five thesis knobs in simulation, against the truth.\n"
+    "Each knob is captured with the Table 3 swept sine through the PID, stored, fitted\n"
+    "with the knob model and compared with its true parameters and with Table 7.",
     {{"db", true, "store to write (default /tmp/knoblab-demo/demo.sqlite, replaced)"},
      {"seconds", true, "capture length per knob, s (default 5)"},
      {"rate", true, "loop rate, Hz (default 5000)"}},
-    0, 0};
+    0, 0, false,
+    {"knoblab demo", "knoblab demo --db /tmp/demo.sqlite --seconds 10"}};
 
 namespace {
 

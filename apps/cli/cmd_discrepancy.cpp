@@ -15,25 +15,28 @@ namespace knoblab::cli {
 
 const CommandSpec kDiscrepancySpec{
     "discrepancy",
-    "--input FILE.csv | --capture ID --db FILE [--heldout FILE.csv | --heldout-capture ID]\n"
-    "  [--json OUT] [--report DIR] [--effects a,b,…] [--max-findings N] [--min-gain PCT]",
-    "Find what the thesis model leaves out of a capture: locate the structured residual,\n"
-    "fit candidate effects (stribeck, backlash, detent_shape, periodic_torque, …) with the\n"
-    "model, keep those that lower the error on held-out time blocks, and say so. A capture\n"
-    "from the store gets its result stored beside it.",
-    {{"input", true, "interchange CSV"},
-     {"capture", true, "capture id in the store"},
+    "(FILE.csv | --capture ID --db FILE.sqlite) [--heldout FILE.csv | --heldout-capture ID]\n"
+    "  [--json OUT.json|-] [--report DIR] [--effects LIST] [--max-findings N] [--min-gain PCT]",
+    "Find what the thesis model leaves out of a capture, and say which physics it is.\n"
+    "Locates the structured residual, fits candidate effects (stribeck, backlash,\n"
+    "detent_shape, periodic_torque, …) with the model, keeps those that lower the error on\n"
+    "held-out time blocks, and says so (text in mN·m, degrees; the JSON in SI units). A\n"
+    "capture from the store gets its result stored beside it.",
+    {{"capture", true, "capture id in the store (instead of FILE.csv)"},
      {"db", true, "sqlite store"},
      {"heldout", true, "another recording of the knob (CSV), held out whole instead of time blocks"},
      {"heldout-capture", true, "… or its capture id in the store"},
-     {"max-findings", true, "stop after N findings (default 4)"},
-     {"min-gain", true, "held-out RMS cut, in %, the findings must earn together to be reported (default 20)"},
+     {"max-findings", true, "stop after N findings (default 4)", "N"},
+     {"min-gain", true, "held-out RMS cut, in %, the findings must earn together to be reported (default 20)", "PCT"},
      {"json", true, "write the result as JSON (docs/discrepancy.md); '-' for stdout"},
      {"report", true, "directory for the report: residual plots before/after, whiteness, summary"},
-     {"effects", true, "comma-separated candidate effect ids (default: all implemented)"},
-     {"alpha", true, "accel (default: the α column, when the CSV has one) or encoder (θ'')"},
+     {"effects", true, "comma-separated candidate effect ids (default: all implemented)", "LIST"},
+     {"alpha", true, "accel (default: the α column, when the CSV has one) or encoder (θ'')", "accel|encoder"},
      {"no-filter", false, "skip the Table 6 low-pass filters (data already clean)"}},
-    0, 0};
+    0, 1, true,
+    {"knoblab simulate --knob moderate-detents --effects 'stribeck:excess=0.004,v_s=0.5' "
+     "--out knob.csv && knoblab discrepancy knob.csv --report report/",
+     "knoblab discrepancy --capture 1 --db lab.sqlite --json found.json"}};
 
 namespace {
 

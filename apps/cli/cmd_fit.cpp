@@ -13,23 +13,25 @@ namespace knoblab::cli {
 
 const CommandSpec kFitSpec{
     "fit",
-    "--input FILE.csv | --capture ID --db FILE [--model thesis6|render4] [--json OUT]\n"
-    "       [--report DIR] [--render-model OUT]",
-    "Fit the knob model (Eq. 6 with the Eq. 7 stick band) to a capture: parameters with\n"
-    "95% confidence intervals, detents per revolution, report plots. A capture from the\n"
-    "store gets its fit stored beside it (knoblab fits).",
-    {{"input", true, "interchange CSV to fit"},
-     {"capture", true, "capture id in the store"},
+    "(FILE.csv | --capture ID --db FILE.sqlite) [--model thesis6|render4] [--json OUT.json|-]\n"
+    "       [--report DIR] [--render-model OUT.json]",
+    "Fit the knob model (thesis Eq. 6 with the Eq. 7 stick band) to a capture.\n"
+    "Prints the parameters with 95% confidence intervals (text in mN·m, degrees; the JSON\n"
+    "in SI units), detents per revolution and how well the model fits; writes report\n"
+    "plots. A capture from the store gets its fit stored beside it (knoblab fits).",
+    {{"capture", true, "capture id in the store (instead of FILE.csv)"},
      {"db", true, "sqlite store"},
-     {"model", true, "thesis6 (Eq. 6, default) or render4 (Eq. 14: M, B, A, P)"},
+     {"model", true, "thesis6 (Eq. 6, default) or render4 (Eq. 14: M, B, A, P)", "thesis6|render4"},
      {"json", true, "write the fit as JSON (docs/fit.md); '-' for stdout"},
      {"report", true, "directory for the report plots (PNG and SVG)"},
      {"render-model", true, "write the render model file hapticd loads (--model)"},
-     {"alpha", true, "accel (default: the α column, when the CSV has one) or encoder (θ'')"},
+     {"alpha", true, "accel (default: the α column, when the CSV has one) or encoder (θ'')", "accel|encoder"},
      {"no-filter", false, "skip the Table 6 low-pass filters (data already clean)"},
-     {"detents", true, "auto (default), yes or no"},
+     {"detents", true, "auto (default), yes or no", "auto|yes|no"},
      {"no-stick", false, "do not estimate the Karnopp stick band"}},
-    0, 0};
+    0, 1, true,
+    {"knoblab simulate --knob moderate-detents --out knob.csv && knoblab fit knob.csv",
+     "knoblab fit --capture 1 --db lab.sqlite --json fit.json --render-model knob-model.json"}};
 
 int run_fit(const Args& args) {
   const fit::PrepOptions prep = prep_options(args);

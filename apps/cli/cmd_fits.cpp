@@ -17,19 +17,21 @@ namespace knoblab::cli {
 
 const CommandSpec kFitsSpec{
     "fits", "--db FILE [--capture ID]",
-    "List the stored fits: model, when, and the key figures of each result (rms\n"
-    "error, percent fit, detents per revolution) and how many report files it has.",
+    "List the stored fits with the key figures of each.\n"
+    "For each: model, when, rms error, percent fit, detents per revolution and how many\n"
+    "report files it has.",
     {{"db", true, "sqlite store"}, {"capture", true, "only the fits of this capture"}},
-    0, 0};
+    0, 0, false, {"knoblab fits --db lab.sqlite --capture 1"}};
 
 const CommandSpec kFitExportSpec{
     "fit-export", "FIT --db FILE [--json OUT|-] [--report DIR]",
-    "Write a stored fit out: its result JSON (the 'knoblab fit --json' format) and/or\n"
-    "its stored report files (plots, fit.json, render model), byte for byte, into DIR.",
+    "Write a stored fit's result JSON and report files out.\n"
+    "The result JSON is the 'knoblab fit --json' format; the stored report files (plots,\n"
+    "fit.json, render model) are written byte for byte into DIR.",
     {{"db", true, "sqlite store"},
      {"json", true, "file for the result JSON; '-' for stdout"},
      {"report", true, "directory for the report files (created if missing)"}},
-    1, 1};
+    1, 1, false, {"knoblab fit-export 1 --db lab.sqlite --json fit.json --report fit-1/"}};
 
 namespace {
 

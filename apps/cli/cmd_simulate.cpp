@@ -16,10 +16,11 @@ namespace knoblab::cli {
 
 const CommandSpec kSimulateSpec{
     "simulate",
-    "(--knob PRESET | --params FILE) [--effects SPECS] [--seconds S] [--rate HZ] [--out FILE.csv] [--db FILE]",
-    "Capture a simulated knob: the swept sine of thesis Eq. 8 (Table 3 spatial test by\n"
-    "default) tracked by the PID of Eq. 4 through the plant simulator, in the loop\n"
-    "hapticd runs. Writes an interchange CSV and/or a capture in the store; the CSV's\n"
+    "(--knob PRESET | --params FIT.json) [--effects SPECS] [--seconds S] [--rate HZ]\n"
+    "       [--out FILE.csv] [--db FILE.sqlite]",
+    "Capture a simulated knob through the loop hapticd runs.\n"
+    "The swept sine of thesis Eq. 8 (Table 3 spatial test by default) is tracked by the\n"
+    "PID of Eq. 4 through the plant simulator. Writes an interchange CSV and/or a capture in the store; the CSV's\n"
     "flags column holds the loop's per-sample flags (docs/interchange.md).\n"
     "Eq. 8's frequency, u/d Hz with u = (b-a)*t/d + a, keeps rising past t = d: the\n"
     "default sweep runs at t/6 Hz, 1 Hz at 6 s but 10 Hz (63 rad/s at 1 rad) at 60 s.\n"
@@ -32,23 +33,26 @@ const CommandSpec kSimulateSpec{
     "'# status: incomplete' and '# end_reason: fault: …' (the store marks the capture\n"
     "incomplete the same way).\n"
     "Presets: 'knoblab simulate --list'.",
-    {{"knob", true, "knob preset id (see --list)"},
-     {"effects", true, "effects beyond the thesis model, 'id:k=v,…;…' (sim/library_effects.hpp)"},
-     {"params", true, "knob parameters JSON (the fit's output format)"},
+    {{"knob", true, "knob preset id (see --list)", "PRESET"},
+     {"effects", true, "effects beyond the thesis model, 'id:k=v,…;…' (docs/discrepancy.md)", "SPECS"},
+     {"params", true, "a fit's result JSON (knoblab fit --json) or a render model"},
      {"seconds", true, "capture length, s (default 5, as the thesis)"},
      {"rate", true, "loop rate, Hz (default 5000; 1..20000)"},
      {"seed", true, "noise seed (default 1)"},
      {"out", true, "write the capture as interchange CSV"},
      {"db", true, "write the capture into this sqlite store"},
-     {"mode", true, "lab (axis horizontal, default) or tripod"},
-     {"tilt", true, "tripod: axis tilt from vertical, degrees (default 30)"},
-     {"amp", true, "amplifier mode: current (default) or voltage (Eq. 3)"},
+     {"mode", true, "lab (axis horizontal, default) or tripod", "lab|tripod"},
+     {"tilt", true, "tripod: axis tilt from vertical, degrees (default 30)", "DEG"},
+     {"amp", true, "amplifier mode: current (default) or voltage (Eq. 3)", "current|voltage"},
      {"kp", true, "PID Kp, V/rad (default 200)"},
      {"ki", true, "PID Ki, V/(rad·s) (default 5000)"},
      {"kd", true, "PID Kd, V·s/rad (default 1.0)"},
-     {"sweep", true, "Eq. 8 constants a,b,c,d (default 0,1.5,1.0,3.0)"},
+     {"sweep", true, "Eq. 8 constants a,b,c,d (default 0,1.5,1.0,3.0)", "A,B,C,D"},
      {"list", false, "list the knob presets and exit"}},
-    0, 0};
+    0, 0, false,
+    {"knoblab simulate --knob moderate-detents --out knob.csv",
+     "knoblab simulate --params fit.json --seconds 10 --db lab.sqlite",
+     "knoblab simulate --knob high-friction --effects 'stribeck:excess=0.004,v_s=0.5' --out sticky.csv"}};
 
 namespace {
 

@@ -1,18 +1,18 @@
 // knoblab import / export / list: move captures between CSV files and the store.
-#include <charconv>
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
 #include "store_open.hpp"
+#include "table_output.hpp"
 #include "knoblab/interchange/csv.hpp"
 #include "knoblab/store/store.hpp"
 
 namespace knoblab::cli {
 
 const CommandSpec kImportSpec{
-    "import", "FILE.csv --db FILE [--knob NAME] [--mode lab|tripod]",
+    "import", "FILE.csv --db FILE.sqlite [--knob NAME] [--mode lab|tripod]",
     "Import an interchange CSV into the store as one complete capture.\n"
     "The file is validated first; a bad file changes nothing in the store.\n"
     "Samples go in in short transactions, so hapticd goes on recording into the\n"
@@ -20,32 +20,55 @@ const CommandSpec kImportSpec{
     "'recording' (an import that is killed is marked incomplete on the next open).",
     {{"db", true, "sqlite store (created if missing)"},
      {"knob", true, "knob name to file the capture under"},
-     {"mode", true, "lab (default) or tripod"}},
-    1, 1};
+     {"mode", true, "lab (default) or tripod", "lab|tripod"}},
+    1, 1, true,
+    {"knoblab import knob.csv --db lab.sqlite --knob 'fan knob'"}};
 
 const CommandSpec kExportSpec{
-    "export", "CAPTURE --db FILE --out FILE.csv",
+    "export", "CAPTURE --db FILE.sqlite --out FILE.csv",
     "Write a stored capture as interchange CSV.\n"
     "The capture's fields (status, end_reason, ...) become '# key: value' lines;\n"
     "the loop's per-sample flags, when any is set, a 'flags' column.\n"
     "Only reads the store: never waits for a writer.",
     {{"db", true, "sqlite store"}, {"out", true, "CSV file to write"}},
-    1, 1};
+    1, 1, false,
+    {"knoblab export 1 --db lab.sqlite --out capture-1.csv"}};
 
 const CommandSpec kListSpec{
-    "list", "--db FILE",
+    "list", "--db FILE.sqlite [--json | --csv]",
     "List the captures in a store.\n"
     "An incomplete capture's last column says why (e.g. 'fault: estop').\n"
     "Only reads the store: never waits for a writer.",
-    {{"db", true, "sqlite store"}}, 0, 0};
+    {{"db", true, "sqlite store"},
+     {"json", false, "print the list as a JSON array"},
+     {"csv", false, "print the list as CSV under a header"}},
+    0, 0, false,
+    {"knoblab list --db lab.sqlite", "knoblab list --db lab.sqlite --csv > captures.csv"}};
 
 namespace {
+
+// What `knoblab export` writes about the row a capture had in its store:
+// kept on import as where the file came from, not as this capture's own.
+bool exported_field(const std::string& key) {
+  for (const char* k : {"capture_id", "rate_hz", "source", "status", "end_reason", "started_at", "finished_at",
+                        "sample_count"})
+    if (key == k) return true;
+  return false;
+}
 
 // A CSV that knoblab wrote says which knob, mounting and stimulus it holds;
 // those become the capture's own fields, the other comments its metadata.
 store::NewCapture describe_import(const interchange::Capture& capture, const Args& args) {
   store::NewCapture info;
-  nlohmann::json rest = nlohmann::json::object();
+  // In file order; a key given twice keeps all its values (an array), free
+  // comments go under "comments": nothing the file said is lost.
+  nlohmann::ordered_json rest = nlohmann::ordered_json::object();
+  const auto keep = [&rest](const std::string& key, const std::string& value) {
+    auto it = rest.find(key);
+    if (it == rest.end()) rest[key] = value;
+    else if (it->is_array()) it->push_back(value);
+    else *it = nlohmann::ordered_json::array({*it, value});
+  };
   for (const auto& [key, value] : capture.metadata) {
     const bool is_object = nlohmann::json::accept(value) && nlohmann::json::parse(value).is_object();
     if (key == "knob") info.knob = value;
@@ -53,8 +76,14 @@ store::NewCapture describe_import(const interchange::Capture& capture, const Arg
     else if (key == "stimulus" && is_object) info.stimulus = value;
     else if (key == "orientation" && is_object) info.orientation = value;
     else if (key == "calibration" && is_object) info.calibration = value;
-    else if (key == "metadata" && is_object) rest.update(nlohmann::json::parse(value));
-    else rest[key] = value;
+    else if (key == "metadata" && is_object) rest.update(nlohmann::ordered_json::parse(value));
+    else if (exported_field(key)) rest["exported_from"][key] = value;
+    else if (key.empty()) {
+      if (!rest.contains("comments")) rest["comments"] = nlohmann::ordered_json::array();
+      rest["comments"].push_back(value);
+    } else {
+      keep(key, value);
+    }
   }
   info.metadata = rest.dump();
   if (auto knob = args.get("knob")) info.knob = *knob;
@@ -63,13 +92,6 @@ store::NewCapture describe_import(const interchange::Capture& capture, const Arg
   return info;
 }
 
-std::int64_t capture_id_arg(const std::string& text) {
-  std::int64_t id = 0;
-  auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), id);
-  if (ec != std::errc() || p != text.data() + text.size() || id <= 0)
-    throw UsageError("CAPTURE must be a capture id (a positive integer), got '" + text + "'");
-  return id;
-}
 
 }  // namespace
 
@@ -88,7 +110,7 @@ int run_import(const Args& args) {
 }
 
 int run_export(const Args& args) {
-  const std::int64_t id = capture_id_arg(args.positionals().at(0));
+  const std::int64_t id = parse_id("CAPTURE", args.positionals().at(0));
   const std::string out = args.require("out");
   store::Store db = open_store_to_read(args.require("db"));
   if (!db.capture_info(id)) throw std::runtime_error("no capture " + std::to_string(id) + " in the store");
@@ -101,9 +123,16 @@ int run_export(const Args& args) {
 
 int run_list(const Args& args) {
   store::Store db = open_store_to_read(args.require("db"));
+  const auto captures = db.list_captures();
+  Table table{{"id", "knob", "mode", "status", "samples", "rate_hz", "started_at", "end_reason"}, {}};
+  for (const auto& c : captures)
+    table.rows.push_back({c.id, c.knob.empty() ? nlohmann::json() : nlohmann::json(c.knob), c.mode, c.status,
+                          c.sample_count, c.rate_hz, c.started_at,
+                          c.end_reason ? nlohmann::json(*c.end_reason) : nlohmann::json()});
+  if (print_table_if_asked(args, table)) return 0;
   std::printf("%6s  %-20s %-7s %-10s %9s %9s  %-24s  %s\n", "id", "knob", "mode", "status",
               "samples", "rate Hz", "started", "why incomplete");
-  for (const auto& c : db.list_captures())
+  for (const auto& c : captures)
     std::printf("%6lld  %-20s %-7s %-10s %9lld %9.0f  %-24s  %s\n", static_cast<long long>(c.id),
                 c.knob.empty() ? "-" : c.knob.c_str(), c.mode.c_str(), c.status.c_str(),
                 static_cast<long long>(c.sample_count), c.rate_hz, c.started_at.c_str(),

@@ -36,6 +36,10 @@ void print_overview() {
 int main(int argc, char** argv) {
   using namespace knoblab::cli;
   std::vector<std::string> args(argv + 1, argv + argc);
+  if (!args.empty() && args[0] == "--version") {
+    std::cout << "knoblab " << KNOBLAB_VERSION << "\n";
+    return 0;
+  }
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     print_overview();
     return args.empty() ? 2 : 0;
@@ -46,6 +50,10 @@ int main(int argc, char** argv) {
       Args parsed(c.spec, std::vector<std::string>(args.begin() + 1, args.end()));
       if (parsed.help()) {
         std::cout << usage(c.spec);
+        return 0;
+      }
+      if (parsed.version()) {
+        std::cout << "knoblab " << KNOBLAB_VERSION << "\n";
         return 0;
       }
       return c.run(parsed);

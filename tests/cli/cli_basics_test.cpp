@@ -40,7 +40,7 @@ TEST(Cli, UsageErrorsExitTwoWithAClearMessage) {
   EXPECT_NE(r.err.find("--rate must be in [1, 20000]"), std::string::npos) << r.err;
   r = run_knoblab({"export", "x", "--db", "/tmp/none.sqlite", "--out", "/tmp/none.csv"});
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("capture id"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("CAPTURE must be an id"), std::string::npos) << r.err;
 }
 
 TEST(Cli, SimulateListsPresets) {

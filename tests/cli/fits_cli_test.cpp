@@ -224,7 +224,7 @@ TEST(FitsCliHelp, CommandsAreListedAndHaveHelp) {
   EXPECT_EQ(overview.exit_code, 0);
   EXPECT_NE(overview.out.find("\n  fits        List the stored fits"), std::string::npos)
       << overview.out;
-  EXPECT_NE(overview.out.find("\n  fit-export  Write a stored fit out"), std::string::npos)
+  EXPECT_NE(overview.out.find("\n  fit-export  Write a stored fit's result JSON"), std::string::npos)
       << overview.out;
   for (const char* c : {"fits", "fit-export"}) {
     const RunResult r = run_knoblab({c, "--help"});

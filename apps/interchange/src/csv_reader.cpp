@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "knoblab/interchange/utf8.hpp"
 #include "knoblab/interchange/csv.hpp"
 #include "knoblab/model/filters.hpp"
 #include "csv_fields.hpp"
@@ -130,6 +131,10 @@ class Parser {
   }
 
   void add_metadata(std::string_view body) {
+    // Metadata reaches the store as JSON text, which must be UTF-8.
+    if (const auto bad = first_invalid_utf8(body))
+      fail(line_no(), 0, "metadata is not valid UTF-8 (byte " + std::to_string(*bad + 2) +
+                             " of the line); save the file as UTF-8");
     body = trim(body);
     const auto colon = body.find(':');
     if (colon == std::string_view::npos) {

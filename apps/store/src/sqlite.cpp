@@ -2,6 +2,9 @@
 
 #include <sqlite3.h>
 
+#include <cstdio>
+#include <string>
+
 #include <utility>
 
 namespace knoblab::store::sqlite {
@@ -26,6 +29,21 @@ Connection Connection::open(const std::filesystem::path& path) {
 
 Connection Connection::open_read_only(const std::filesystem::path& path) {
   return open(path, SQLITE_OPEN_READONLY);
+}
+
+Connection Connection::open_immutable(const std::filesystem::path& path) {
+  // A URI: percent-encode what would end the path or start the query.
+  std::string uri = "file:";
+  for (unsigned char c : path.string()) {
+    if (c == '%' || c == '?' || c == '#' || c < 0x20) {
+      char esc[4];
+      std::snprintf(esc, sizeof esc, "%%%02X", c);
+      uri += esc;
+    } else {
+      uri += static_cast<char>(c);
+    }
+  }
+  return open(uri + "?immutable=1", SQLITE_OPEN_READONLY | SQLITE_OPEN_URI);
 }
 
 Connection Connection::open(const std::filesystem::path& path, int flags) {

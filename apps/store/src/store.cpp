@@ -1,4 +1,5 @@
 // Opening (pragmas, migrations), knobs, capture rows, biometrics.
+#include "knoblab/interchange/utf8.hpp"
 #include "knoblab/store/store.hpp"
 
 #include <sqlite3.h>
@@ -44,8 +45,31 @@ Store Store::open_read_only(const std::filesystem::path& path, const OpenOptions
     throw StoreError(path.string() + ": no such store (reading never creates one)");
   auto db = std::make_shared<sqlite::Connection>(sqlite::Connection::open_read_only(path));
   db->set_busy_timeout(options.busy_timeout_ms);
-  const int version = store::schema_version(*db);
+  int version = 0;
+  bool immutable = false;
+  try {
+    version = store::schema_version(*db);
+  } catch (const StoreError& e) {
+    // On read-only media (a write-protected card, a ro mount) sqlite cannot
+    // create the WAL index beside the file. Nothing can write there either,
+    // so reading it as immutable is exact, unless a log of commits not yet
+    // in the file was left behind: those would be missed, so say so instead.
+    const int primary = e.sqlite_code() & 0xff;
+    if (primary != SQLITE_CANTOPEN && primary != SQLITE_READONLY) throw;
+    const auto wal = std::filesystem::path(path.string() + "-wal");
+    if (std::filesystem::exists(wal, ec) && std::filesystem::file_size(wal, ec) > 0)
+      throw StoreError(path.string() + ": on read-only media with a write-ahead log (" + wal.filename().string() +
+                           ") sqlite cannot read without writing beside it; copy the store with its -wal file "
+                           "to writable media",
+                       e.sqlite_code());
+    db = std::make_shared<sqlite::Connection>(sqlite::Connection::open_immutable(path));
+    version = store::schema_version(*db);
+    immutable = true;
+  }
   check_schema_not_newer(version);
+  if (version < latest_schema_version() && immutable)
+    throw StoreError(path.string() + ": schema version " + std::to_string(version) +
+                     " needs an upgrade, which read-only media cannot take; copy the store to writable media");
   if (version < latest_schema_version()) {
     // This binary's queries need the current schema: upgrade once, briefly
     // read-write, then read as asked.
@@ -119,6 +143,13 @@ std::string Store::integrity_check() { return db_->query_text("PRAGMA integrity_
 std::optional<std::int64_t> detail::resolve_knob(sqlite::Connection& db, std::string_view name,
                                                  std::string_view description, bool* created) {
   if (name.empty()) return std::nullopt;
+  // A knob name is one line of readable text: it is printed in listings,
+  // reports and file metadata, where a control character would garble them.
+  if (const auto bad = interchange::first_invalid_utf8(name))
+    throw std::invalid_argument("knob name is not valid UTF-8 (byte " + std::to_string(*bad + 1) + ")");
+  if (const auto ctl = interchange::first_control_char(name))
+    throw std::invalid_argument("knob name holds a control character (byte " + std::to_string(*ctl + 1) +
+                                "); give one line of text");
   db.prepare("INSERT INTO knobs (name, description) VALUES (?1, ?2) ON CONFLICT (name) DO NOTHING")
       .bind_text(1, name)
       .bind_text(2, description)

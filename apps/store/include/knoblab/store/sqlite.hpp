@@ -30,6 +30,9 @@ class Connection {
   // Opens an existing file read-only: every write fails with SQLITE_READONLY,
   // and the connection never takes the write lock.
   static Connection open_read_only(const std::filesystem::path& path);
+  // Opens a file on read-only media, where sqlite cannot make the WAL index
+  // (-shm) it needs beside the file: sqlite's immutable=1, no locks at all.
+  static Connection open_immutable(const std::filesystem::path& path);
 
   Connection(Connection&& other) noexcept;
   Connection& operator=(Connection&& other) noexcept;
