@@ -243,6 +243,10 @@ TEST(Convert, OdriveCoggingMapBecomesAStaticMapWhoseSpectrumShowsTheCoggingHarmo
   EXPECT_EQ(strongest, (std::set<int>{7, 12, 14, 28, 36, 84}));
   EXPECT_EQ(j.at("harmonics").at(0).at("cycles_per_rev"), 7);
   EXPECT_NEAR(j.at("harmonics").at(0).at("amplitude_Nm").get<double>(), 0.0479056, 1e-6);  // a DFT of the same values: 47.9056 mN·m
+  r = run_knoblab({"inspect", (dir / "map.csv").string(), "--csv"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.out.starts_with("cycles_per_rev,amplitude_Nm,power\n7,0.0479")) << r.out;
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 9);  // header and the eight strongest
   r = run_knoblab({"inspect", (dir / "map.csv").string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(contains(r.out, "static map of 512 positions")) << r.out;
