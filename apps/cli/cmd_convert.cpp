@@ -90,7 +90,7 @@ MatArray pick_array(const std::string& file, const Args& args) {
 // broken to tell, by its name)?
 bool is_array_input(const std::string& file) {
   std::ifstream in(file, std::ios::binary);
-  std::string head(8, '\0');
+  std::string head(32, '\0');
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<std::size_t>(in.gcount()));
   if (interchange::array_file_kind(head) != interchange::ArrayFileKind::kNone) return true;

@@ -29,7 +29,8 @@ std::string read_file_bytes(const std::filesystem::path& path, const MatLimits& 
 }  // namespace detail
 
 ArrayFileKind array_file_kind(std::string_view b) {
-  if (b.starts_with("MATLAB")) return ArrayFileKind::kMat;
+  // Not just "MATLAB": a CSV's first column may be called that.
+  if (b.starts_with("MATLAB 5.0 MAT-file") || b.starts_with("MATLAB 7.3 MAT-file")) return ArrayFileKind::kMat;
   if (b.starts_with(std::string_view("\x93NUMPY", 6))) return ArrayFileKind::kNpy;
   // A Python pickle (np.save of an object, or pickle.dump): the .npy reader refuses it by name.
   if (b.size() >= 2 && static_cast<unsigned char>(b[0]) == 0x80 && b[1] >= 2 && b[1] <= 5) return ArrayFileKind::kNpy;

@@ -13,7 +13,8 @@ namespace knoblab::interchange {
 
 enum class ArrayFileKind { kNone, kMat, kNpy, kNpz };
 
-// What the file's first bytes say it is; kNone for anything else (a CSV).
+// What the file's first bytes (32 are enough) say it is; kNone for anything
+// else (a CSV).
 ArrayFileKind array_file_kind(std::string_view first_bytes);
 
 // Every variable (MAT), the one array (.npy, named after the file's stem) or
