@@ -16,6 +16,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace knoblab::interchange::detail {
 
@@ -66,6 +67,20 @@ class Handle {
  private:
   hid_t id_;
   herr_t (*close_)(hid_t);
+};
+
+// References read from a dataset, released however the reading ends.
+struct References {
+  explicit References(std::size_t n) : refs(n) {}
+  ~References() {
+    if (read)
+      for (auto& r : refs) H5Rdestroy(&r);
+  }
+  References(const References&) = delete;
+  References& operator=(const References&) = delete;
+  H5R_ref_t* data() { return refs.data(); }
+  std::vector<H5R_ref_t> refs;
+  bool read = false;
 };
 
 std::optional<MatClass> numeric_class(const std::string& name) {
@@ -177,13 +192,15 @@ class Reader {
       a.cls = MatClass::kCell;
       if (tclass != H5T_REFERENCE) fail(where, "a cell array whose data are not object references");
       if (n > limits_.max_arrays) fail(where, "cell array of " + std::to_string(n) + " cells, over the limit");
-      std::vector<hobj_ref_t> refs(n);
-      if (n > 0 && H5Dread(obj, H5T_STD_REF_OBJ, H5S_ALL, H5S_ALL, H5P_DEFAULT, refs.data()) < 0)
+      // Read as HDF5's current reference type, which also reads MATLAB's old-style object references.
+      References refs(n);
+      if (n > 0 && H5Dread(obj, H5T_STD_REF, H5S_ALL, H5S_ALL, H5P_DEFAULT, refs.data()) < 0)
         fail(where, "cannot read the cell references: " + hdf5_reason());
+      refs.read = true;
       a.cells.reserve(n);
       for (std::size_t i = 0; i < n; ++i) {
         const std::string cell_where = where + ", cell " + std::to_string(i + 1);
-        Handle target(H5Rdereference2(obj, H5P_DEFAULT, H5R_OBJECT, &refs[i]), H5Oclose);
+        Handle target(H5Ropen_object(&refs.refs[i], H5P_DEFAULT, H5P_DEFAULT), H5Oclose);
         if (!target.ok()) fail(cell_where, "broken reference: " + hdf5_reason());
         a.cells.push_back(read_object(target.get(), cell_where, depth + 1));
       }
