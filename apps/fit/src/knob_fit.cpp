@@ -96,9 +96,10 @@ Solved solve(const Residuals& res, const FitOptions& opt, std::vector<double> st
 // A ≥ 0 and S in (−π, π]: one spelling for every equivalent detent term.
 void canonical_detents(std::vector<double>& p) {
   const std::size_t a = p.size() - 3;  // A_pos, P_pos, S_pos are the last three
-  if (p[a] < 0) p[a] = -p[a], p[a + 2] += std::numbers::pi;
-  p[a + 2] = std::remainder(p[a + 2], 2 * std::numbers::pi);
-  if (p[a + 2] <= -std::numbers::pi) p[a + 2] += 2 * std::numbers::pi;
+  model::Detents<double> d;
+  d.A = p[a], d.P = p[a + 1], d.S = p[a + 2];
+  d = model::canonical(d);
+  p[a] = d.A, p[a + 2] = d.S;
 }
 
 // Rows for the detent search and starting values: where the knob slides

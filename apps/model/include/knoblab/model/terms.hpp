@@ -113,6 +113,21 @@ struct Detents {
   }
 };
 
+// The same detent torque spelled with A >= 0 and S in (-pi, pi], so equal
+// terms print alike: A -> -A with S -> S + pi leaves A*sin(theta/P + S) as it
+// was, and multiplies harmonic k by (-1)^k, which the harmonics undo.
+inline Detents<double> canonical(Detents<double> d) {
+  constexpr double kPi = 3.14159265358979323846;
+  if (d.A < 0) {
+    d.A = -d.A;
+    d.S += kPi;
+    for (std::size_t k = 3; k <= Detents<double>::kMaxHarmonic; k += 2) d.a[k] = -d.a[k], d.b[k] = -d.b[k];
+  }
+  d.S = std::remainder(d.S, 2 * kPi);
+  if (d.S <= -kPi) d.S += 2 * kPi;
+  return d;
+}
+
 // Detents per revolution of a detent period P.
 inline double cycles_per_rev(const Detents<double>& d) { return 1.0 / d.P; }
 
