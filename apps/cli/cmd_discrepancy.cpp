@@ -7,6 +7,7 @@
 
 #include "capture_input.hpp"
 #include "commands.hpp"
+#include "figure_args.hpp"
 #include "knoblab/discovery/discrepancy.hpp"
 #include "knoblab/discovery/report.hpp"
 #include "knoblab/fit/fit_data.hpp"
@@ -16,12 +17,13 @@ namespace knoblab::cli {
 const CommandSpec kDiscrepancySpec{
     "discrepancy",
     "--input FILE.csv | --capture ID --db FILE [--heldout FILE.csv | --heldout-capture ID]\n"
-    "  [--json OUT] [--report DIR] [--effects a,b,…] [--max-findings N] [--min-gain PCT]",
+    "  [--json OUT] [--report DIR [--format pdf,svg,png] [--size 160x100mm] [--dpi 300]]\n"
+    "  [--effects a,b,…] [--max-findings N] [--min-gain PCT]",
     "Find what the thesis model leaves out of a capture: locate the structured residual,\n"
     "fit candidate effects (stribeck, backlash, detent_shape, periodic_torque, …) with the\n"
     "model, keep those that lower the error on held-out time blocks, and say so. A capture\n"
     "from the store gets its result stored beside it.",
-    {{"input", true, "interchange CSV"},
+    with_figure_options({{"input", true, "interchange CSV"},
      {"capture", true, "capture id in the store"},
      {"db", true, "sqlite store"},
      {"heldout", true, "another recording of the knob (CSV), held out whole instead of time blocks"},
@@ -29,10 +31,10 @@ const CommandSpec kDiscrepancySpec{
      {"max-findings", true, "stop after N findings (default 4)"},
      {"min-gain", true, "held-out RMS cut, in %, the findings must earn together to be reported (default 20)"},
      {"json", true, "write the result as JSON (docs/discrepancy.md); '-' for stdout"},
-     {"report", true, "directory for the report: residual plots before/after, whiteness, summary"},
+     {"report", true, "directory for the report: residual figures before/after, whiteness, summary"},
      {"effects", true, "comma-separated candidate effect ids (default: all implemented)"},
      {"alpha", true, "accel (default: the α column, when the CSV has one) or encoder (θ'')"},
-     {"no-filter", false, "skip the Table 6 low-pass filters (data already clean)"}},
+     {"no-filter", false, "skip the Table 6 low-pass filters (data already clean)"}}),
     0, 0};
 
 namespace {
@@ -86,6 +88,8 @@ int run_discrepancy(const Args& args) {
     opt.min_reported_gain = pct / 100.0;
   }
   if (args.get("report") == std::optional<std::string>("")) throw UsageError("--report needs a directory");
+  discovery::ReportOptions ro;
+  ro.figure = figure_options(args);
 
   CaptureInput in = read_capture_input(args);  // not const: its store takes the result
   const fit::FitData data = fit::prepare(in.capture, prep);
@@ -125,7 +129,6 @@ int run_discrepancy(const Args& args) {
   const std::string json = discovery::to_json(r);
   if (auto out = args.get("json")) write_text(*out, json);
   if (auto dir = args.get("report")) {
-    discovery::ReportOptions ro;
     ro.title = in.title;
     const auto files = discovery::write_discrepancy_report(*dir, data, r, ro);
     if (!json_to_stdout) std::printf("report: %zu files in %s\n", files.size(), dir->c_str());

@@ -4,6 +4,7 @@
 
 #include "capture_input.hpp"
 #include "commands.hpp"
+#include "figure_args.hpp"
 #include "fit_run.hpp"
 #include "knoblab/fit/render_model.hpp"
 #include "knoblab/fit/report.hpp"
@@ -14,21 +15,22 @@ namespace knoblab::cli {
 const CommandSpec kFitSpec{
     "fit",
     "--input FILE.csv | --capture ID --db FILE [--model thesis6|render4] [--json OUT]\n"
-    "       [--report DIR] [--render-model OUT]",
+    "       [--report DIR [--format pdf,svg,png] [--size 160x100mm] [--dpi 300]] [--render-model OUT]",
     "Fit the knob model (Eq. 6 with the Eq. 7 stick band) to a capture: parameters with\n"
-    "95% confidence intervals, detents per revolution, report plots. A capture from the\n"
-    "store gets its fit stored beside it (knoblab fits).",
-    {{"input", true, "interchange CSV to fit"},
+    "95% confidence intervals, detents per revolution, report figures (PDF, SVG, PNG, each\n"
+    "with its data as CSV). A capture from the store gets its fit stored beside it\n"
+    "(knoblab fits).",
+    with_figure_options({{"input", true, "interchange CSV to fit"},
      {"capture", true, "capture id in the store"},
      {"db", true, "sqlite store"},
      {"model", true, "thesis6 (Eq. 6, default) or render4 (Eq. 14: M, B, A, P)"},
      {"json", true, "write the fit as JSON (docs/fit.md); '-' for stdout"},
-     {"report", true, "directory for the report plots (PNG and SVG)"},
+     {"report", true, "directory for the report figures and fit.json"},
      {"render-model", true, "write the render model file hapticd loads (--model)"},
      {"alpha", true, "accel (default: the α column, when the CSV has one) or encoder (θ'')"},
      {"no-filter", false, "skip the Table 6 low-pass filters (data already clean)"},
      {"detents", true, "auto (default), yes or no"},
-     {"no-stick", false, "do not estimate the Karnopp stick band"}},
+     {"no-stick", false, "do not estimate the Karnopp stick band"}}),
     0, 0};
 
 int run_fit(const Args& args) {
@@ -46,6 +48,9 @@ int run_fit(const Args& args) {
     else throw UsageError("--detents must be auto, yes or no");
   }
   opt.stick_band = !args.has("no-stick");
+  fit::ReportOptions ro;
+  ro.figure = figure_options(args);
+  if (args.get("report") == std::optional<std::string>("")) throw UsageError("--report needs a directory");
 
   CaptureInput in = read_capture_input(args);
   const std::string& title = in.title;
@@ -65,7 +70,6 @@ int run_fit(const Args& args) {
     write_text(*out, fit::to_json(fit::reduce_to_render(r, run.data.omega)));
   }
   if (auto dir = args.get("report")) {
-    fit::ReportOptions ro;
     ro.title = title;
     const auto files = fit::write_report(r, run.data, fit::predict(r, run.data), *dir, ro);
     write_text((std::filesystem::path(*dir) / "fit.json").string(), json);
