@@ -146,7 +146,7 @@ std::size_t count(const Image& im, bool (*pred)(const std::array<int, 3>&)) {
   return n;
 }
 
-TEST_F(ReportTest, WritesTheEightFilesAndCreatesTheDirectory) {
+TEST_F(ReportTest, WritesTheSixteenFilesAndCreatesTheDirectory) {
   const Case c = make_case();
   const fs::path dir = dir_ / "nested" / "report";
   ReportOptions opt;
