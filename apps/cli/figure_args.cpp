@@ -1,5 +1,7 @@
 #include "figure_args.hpp"
 
+#include "knoblab/fit/plot/figure_files.hpp"
+
 #include <algorithm>
 #include <stdexcept>
 
@@ -26,6 +28,7 @@ fit::plot::FigureOptions figure_options(const Args& args) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
+  if (args.has("report")) fit::plot::require_formats(opt.formats);
   return opt;
 }
 

@@ -13,7 +13,8 @@ namespace knoblab::cli {
 std::vector<OptionSpec> with_figure_options(std::vector<OptionSpec> options);
 
 // The figure options given, defaults otherwise. Throws UsageError saying
-// what is wrong, or that they were given without --report.
+// what is wrong, or that they were given without --report; with --report,
+// std::runtime_error when PLplot here cannot draw a format asked for.
 fit::plot::FigureOptions figure_options(const Args& args);
 
 }  // namespace knoblab::cli

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 
@@ -73,6 +74,33 @@ TEST_F(ReportFigures, BadFigureOptionsAreRefusedBeforeAnythingIsDone) {
     EXPECT_EQ(r.exit_code, 2) << command;
     EXPECT_NE(r.err.find("--dpi needs --report DIR"), std::string::npos) << r.err;
   }
+}
+
+TEST_F(ReportFigures, AFormatThisPlplotCannotDrawIsRefusedBeforeTheFit) {
+  // A PLplot built with only the PNG and SVG cairo drivers (as the Yocto
+  // image's once was): its driver directory, cut down.
+  const fs::path drivers = dir_ / "drivers";
+  fs::create_directories(drivers);
+  fs::create_symlink(fs::path(KNOBLAB_PLPLOT_DRVDIR) / "cairo.so", drivers / "cairo.so");
+  std::string info;
+  for (const std::string& line : {std::string("svgcairo:Cairo SVG Driver:0:cairo:104:svgcairo\n"),
+                                  std::string("pngcairo:Cairo PNG Driver:0:cairo:105:pngcairo\n")})
+    info += line;
+  write_file(drivers / "cairo.driver_info", info);
+  ::setenv("PLPLOT_DRV_DIR", drivers.c_str(), 1);
+  const auto report = dir_ / "report";
+  RunResult r = run_knoblab({"fit", "--input", csv_, "--report", report.string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("no pdfcairo driver (its cairo drivers: svgcairo, pngcairo): leave pdf out of --format"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.out.find("rmse"), std::string::npos) << "the fit did not run: " << r.out;
+  EXPECT_FALSE(fs::exists(report));
+  r = run_knoblab({"discrepancy", "--input", csv_, "--report", report.string(), "--format", "svg,png"});
+  ::unsetenv("PLPLOT_DRV_DIR");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::is_regular_file(report / "whiteness.svg"));
+  EXPECT_FALSE(fs::exists(report / "whiteness.pdf"));
 }
 
 }  // namespace

@@ -26,6 +26,7 @@ std::vector<fs::path> write_figure(const Figure& fig, const fs::path& dir, const
   std::vector<fs::path> written;
   {
     const std::lock_guard<std::mutex> lock(detail::plplot_mutex());
+    detail::require_drivers(opt.formats);
     for (const Format format : opt.formats) {
       const fs::path file = dir / (stem + "." + std::string(extension(format)));
       detail::write_plot_file(file, format, [&](const fs::path& tmp) {
@@ -46,6 +47,11 @@ std::vector<fs::path> write_figure(const Figure& fig, const fs::path& dir, const
   }
   written.push_back(csv);
   return written;
+}
+
+void require_formats(const std::vector<Format>& formats) {
+  const std::lock_guard<std::mutex> lock(detail::plplot_mutex());
+  detail::require_drivers(formats);
 }
 
 std::vector<fs::path> write_figures(const std::vector<NamedFigure>& figures, const fs::path& dir,

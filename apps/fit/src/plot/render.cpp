@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "knoblab/fit/plot/text.hpp"
@@ -190,6 +191,25 @@ DeviceSize device_size(const Layout& layout, Format format, int dpi) {
     return {static_cast<int>(std::lround(layout.width_mm / kPtMm)),
             static_cast<int>(std::lround(layout.height_mm / kPtMm))};
   return {pixels(layout.width_mm, dpi), pixels(layout.height_mm, dpi)};
+}
+
+void require_drivers(const std::vector<Format>& formats) {
+  constexpr int kMostDevices = 128;
+  PLCHAR_VECTOR menu[kMostDevices], names[kMostDevices];
+  PLCHAR_VECTOR *menu_p = menu, *names_p = names;  // PLplot fills the arrays these point at
+  int count = kMostDevices;
+  plgDevs(&menu_p, &names_p, &count);
+  std::string have;
+  for (int k = 0; k < count; ++k)
+    if (std::strstr(names[k], "cairo") != nullptr) have += (have.empty() ? "" : ", ") + std::string(names[k]);
+  for (const Format f : formats) {
+    bool found = false;
+    for (int k = 0; k < count; ++k) found = found || std::strcmp(names[k], device_name(f)) == 0;
+    if (!found)
+      throw std::runtime_error("this PLplot has no " + std::string(device_name(f)) + " driver (its cairo drivers: " +
+                               (have.empty() ? "none" : have) + "): leave " + std::string(extension(f)) +
+                               " out of --format");
+  }
 }
 
 void render(const Figure& fig, const Layout& layout, Format format, int dpi, const fs::path& file) {

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <mutex>
+#include <vector>
 
 #include "knoblab/fit/plot/figure.hpp"
 #include "knoblab/fit/plot/figure_options.hpp"
@@ -22,6 +23,12 @@ struct DeviceSize {
   int width = 0, height = 0;
 };
 DeviceSize device_size(const Layout& layout, Format format, int dpi);
+
+// Throws std::runtime_error when this PLplot lacks the cairo driver of one of
+// `formats` (a build with only some of them): asked for a driver it does not
+// have, PLplot would prompt on stdin for another. The caller holds
+// plplot_mutex().
+void require_drivers(const std::vector<Format>& formats);
 
 // Draws `fig` as `layout` places it into `file`. PDF and PNG get their text
 // from PLplot; an SVG's text is left to svg_text.hpp, as <text> elements.

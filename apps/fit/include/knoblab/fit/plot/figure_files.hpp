@@ -21,6 +21,11 @@ namespace knoblab::fit::plot {
 std::vector<std::filesystem::path> write_figure(const Figure& fig, const std::filesystem::path& dir,
                                                 const std::string& stem, const FigureOptions& opt);
 
+// Throws std::runtime_error naming what is missing when this PLplot cannot
+// draw one of `formats` (a build without that cairo driver): a command checks
+// before its work, not after.
+void require_formats(const std::vector<Format>& formats);
+
 // A report's figures, by file stem.
 struct NamedFigure {
   std::string stem;
