@@ -11,6 +11,7 @@
 #include "capture_input.hpp"
 #include "commands.hpp"
 #include "compare_plot.hpp"
+#include "figure_args.hpp"
 #include "compare_side.hpp"
 #include "fit_run.hpp"
 
@@ -18,7 +19,7 @@ namespace knoblab::cli {
 
 const CommandSpec kCompareSpec{
     "compare",
-    "A B [--db FILE.sqlite] [--json OUT.json|-] [--report DIR]",
+    "A B [--db FILE.sqlite] [--json OUT.json|-] [--report DIR [--format pdf,svg,png] [--size WxHmm] [--dpi N]]",
     "Compare two knobs parameter by parameter, with their intervals, and overlay them.\n"
     "Each of A and B is a capture (CSV file, or a capture id with --db: its latest\n"
     "stored fit, else fitted now), a fit's result\n"
@@ -26,13 +27,13 @@ const CommandSpec kCompareSpec{
     "parameter with its 95 % interval (mN·m, rad; SI in --json) and whether A's and\n"
     "B's intervals overlap (with an interval on one side only: whether the other's\n"
     "value lies inside it). --report writes torque_position and torque_velocity, the\n"
-    "two overlaid (docs/fit.md).",
-    {{"db", true, "sqlite store the capture ids are in"},
+    "two overlaid, as PDF, SVG and PNG with their data as CSV (docs/fit.md, docs/figures.md).",
+    with_figure_options({{"db", true, "sqlite store the capture ids are in"},
      {"json", true, "write the comparison as JSON (SI); '-' for stdout"},
-     {"report", true, "directory for the overlaid plots (PNG and SVG)"},
+     {"report", true, "directory for the overlaid figures"},
      {"alpha", true, "captures: accel (default: the α column, when there is one) or encoder (θ'')",
       "accel|encoder"},
-     {"no-filter", false, "captures: skip the Table 6 low-pass filters"}},
+     {"no-filter", false, "captures: skip the Table 6 low-pass filters"}}),
     2, 2, false,
     {"knoblab compare knob.csv fit.json", "knoblab compare 1 2 --db lab.sqlite --report compare/"}};
 
@@ -144,6 +145,7 @@ std::string comparison_json(const CompareSide& a, const CompareSide& b, const st
 
 int run_compare(const Args& args) {
   if (args.get("report") == std::optional<std::string>("")) throw UsageError("--report needs a directory");
+  const fit::plot::FigureOptions figures = figure_options(args);  // checked before any work
   const CompareSide a = read_side(args.positionals()[0], args);
   const CompareSide b = read_side(args.positionals()[1], args);
   const std::vector<Row> rows = rows_of(a, b);
@@ -151,7 +153,7 @@ int run_compare(const Args& args) {
   if (!json_to_stdout) print_table(a, b, rows);
   if (auto out = args.get("json")) write_text(*out, comparison_json(a, b, rows));
   if (auto dir = args.get("report")) {
-    const auto files = write_compare_plots(*dir, a, b);
+    const auto files = write_compare_plots(*dir, a, b, figures);
     if (!json_to_stdout) std::printf("report: %zu files in %s\n", files.size(), dir->c_str());
   }
   return 0;

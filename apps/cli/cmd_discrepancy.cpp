@@ -7,6 +7,7 @@
 
 #include "capture_input.hpp"
 #include "commands.hpp"
+#include "figure_args.hpp"
 #include "knoblab/discovery/discrepancy.hpp"
 #include "knoblab/discovery/report.hpp"
 #include "knoblab/fit/fit_data.hpp"
@@ -16,16 +17,17 @@ namespace knoblab::cli {
 const CommandSpec kDiscrepancySpec{
     "discrepancy",
     "(FILE.csv | --capture ID --db FILE.sqlite) [--heldout FILE.csv | --heldout-capture ID]\n"
-    "  [--json OUT.json|-] [--model-out FILE.json] [--report DIR] [--effects LIST]\n"
-    "  [--max-findings N] [--min-gain PCT]",
+    "  [--json OUT.json|-] [--model-out FILE.json] [--report DIR [--format pdf,svg,png]\n"
+    "  [--size 160x100mm] [--dpi 300]] [--effects LIST] [--max-findings N] [--min-gain PCT]",
     "Find what the thesis model leaves out of a capture, and say which physics it is.\n"
     "Locates the structured residual, fits candidate effects (stribeck, backlash,\n"
     "detent_shape, periodic_torque, …) with the model, keeps those that lower the error on\n"
     "held-out time blocks, and says so (text in mN·m, degrees; the JSON in SI units). A\n"
     "capture from the store gets its result stored beside it. --model-out writes the final\n"
     "model (base and kept effects) as a model file that knoblab simulate --params, knoblab\n"
-    "ctl load_model and hapticd --model take (docs/discrepancy.md).",
-    {{"capture", true, "capture id in the store (instead of FILE.csv)"},
+    "ctl load_model and hapticd --model take (docs/discrepancy.md). --report writes the\n"
+    "figures as PDF, SVG and PNG, each with its data as CSV (docs/figures.md).",
+    with_figure_options({{"capture", true, "capture id in the store (instead of FILE.csv)"},
      {"db", true, "sqlite store"},
      {"heldout", true, "another recording of the knob (CSV), held out whole instead of time blocks"},
      {"heldout-capture", true, "… or its capture id in the store"},
@@ -33,14 +35,14 @@ const CommandSpec kDiscrepancySpec{
      {"min-gain", true, "held-out RMS cut, in %, the findings must earn together to be reported (default 20)", "PCT"},
      {"json", true, "write the result as JSON (docs/discrepancy.md); '-' for stdout"},
      {"model-out", true, "write the final model as a model file (simulate --params, ctl load_model)"},
-     {"report", true, "directory for the report: residual plots before/after, whiteness, summary"},
+     {"report", true, "directory for the report: residual figures before/after, whiteness, summary"},
      {"effects", true, "comma-separated candidate effect ids (default: all implemented)", "LIST"},
      {"alpha", true, "accel (default: the α column, when the CSV has one) or encoder (θ'')", "accel|encoder"},
-     {"no-filter", false, "skip the Table 6 low-pass filters (data already clean)"}},
+     {"no-filter", false, "skip the Table 6 low-pass filters (data already clean)"}}),
     0, 1, true,
     {"knoblab simulate --knob moderate-detents --effects 'stribeck:excess=0.004,v_s=0.5' "
      "--out knob.csv && knoblab discrepancy knob.csv --report report/",
-     "knoblab discrepancy --capture 1 --db lab.sqlite --json found.json"}};
+     "knoblab discrepancy --capture 1 --db lab.sqlite --json found.json --report report/ --format pdf"}};
 
 namespace {
 
@@ -93,6 +95,8 @@ int run_discrepancy(const Args& args) {
     opt.min_reported_gain = pct / 100.0;
   }
   if (args.get("report") == std::optional<std::string>("")) throw UsageError("--report needs a directory");
+  discovery::ReportOptions ro;
+  ro.figure = figure_options(args);
 
   CaptureInput in = read_capture_input(args);  // not const: its store takes the result
   const fit::FitData data = fit::prepare(in.capture, prep);
@@ -136,7 +140,6 @@ int run_discrepancy(const Args& args) {
     if (!json_to_stdout) std::printf("model file: %s\n", out->c_str());
   }
   if (auto dir = args.get("report")) {
-    discovery::ReportOptions ro;
     ro.title = in.title;
     const auto files = discovery::write_discrepancy_report(*dir, data, r, ro);
     if (!json_to_stdout) std::printf("report: %zu files in %s\n", files.size(), dir->c_str());

@@ -4,6 +4,7 @@
 
 #include "capture_input.hpp"
 #include "commands.hpp"
+#include "figure_args.hpp"
 #include "fit_run.hpp"
 #include "knoblab/fit/render_model.hpp"
 #include "knoblab/fit/report.hpp"
@@ -14,24 +15,27 @@ namespace knoblab::cli {
 const CommandSpec kFitSpec{
     "fit",
     "(FILE.csv | --capture ID --db FILE.sqlite) [--model thesis6|render4] [--json OUT.json|-]\n"
-    "       [--report DIR] [--render-model OUT.json]",
+    "       [--report DIR [--format pdf,svg,png] [--size 160x100mm] [--dpi 300]]\n"
+    "       [--render-model OUT.json]",
     "Fit the knob model (thesis Eq. 6 with the Eq. 7 stick band) to a capture.\n"
     "Prints the parameters with 95% confidence intervals (text in mN·m, degrees; the JSON\n"
-    "in SI units), detents per revolution and how well the model fits; writes report\n"
-    "plots. A capture from the store gets its fit stored beside it (knoblab fits).",
-    {{"capture", true, "capture id in the store (instead of FILE.csv)"},
+    "in SI units), detents per revolution and how well the model fits; --report writes the\n"
+    "figures as PDF, SVG and PNG, each with its data as CSV (docs/figures.md). A capture\n"
+    "from the store gets its fit stored beside it (knoblab fits).",
+    with_figure_options({{"capture", true, "capture id in the store (instead of FILE.csv)"},
      {"db", true, "sqlite store"},
      {"model", true, "thesis6 (Eq. 6, default) or render4 (Eq. 14: M, B, A, P)", "thesis6|render4"},
      {"json", true, "write the fit as JSON (docs/fit.md); '-' for stdout"},
-     {"report", true, "directory for the report plots (PNG and SVG)"},
+     {"report", true, "directory for the report figures and fit.json"},
      {"render-model", true, "write the render model file hapticd loads (--model)"},
      {"alpha", true, "accel (default: the α column, when the CSV has one) or encoder (θ'')", "accel|encoder"},
      {"no-filter", false, "skip the Table 6 low-pass filters (data already clean)"},
      {"detents", true, "auto (default), yes or no", "auto|yes|no"},
-     {"no-stick", false, "do not estimate the Karnopp stick band"}},
+     {"no-stick", false, "do not estimate the Karnopp stick band"}}),
     0, 1, true,
     {"knoblab simulate --knob moderate-detents --out knob.csv && knoblab fit knob.csv",
-     "knoblab fit --capture 1 --db lab.sqlite --json fit.json --render-model knob-model.json"}};
+     "knoblab fit --capture 1 --db lab.sqlite --json fit.json --render-model knob-model.json",
+     "knoblab fit knob.csv --report figures/ --format pdf,png --size 90x60mm --dpi 600"}};
 
 int run_fit(const Args& args) {
   const fit::PrepOptions prep = prep_options(args);
@@ -48,6 +52,9 @@ int run_fit(const Args& args) {
     else throw UsageError("--detents must be auto, yes or no");
   }
   opt.stick_band = !args.has("no-stick");
+  fit::ReportOptions ro;
+  ro.figure = figure_options(args);
+  if (args.get("report") == std::optional<std::string>("")) throw UsageError("--report needs a directory");
 
   CaptureInput in = read_capture_input(args);
   const std::string& title = in.title;
@@ -67,7 +74,6 @@ int run_fit(const Args& args) {
     write_text(*out, fit::to_json(fit::reduce_to_render(r, run.data.omega)));
   }
   if (auto dir = args.get("report")) {
-    fit::ReportOptions ro;
     ro.title = title;
     const auto files = fit::write_report(r, run.data, fit::predict(r, run.data), *dir, ro);
     write_text((std::filesystem::path(*dir) / "fit.json").string(), json);
