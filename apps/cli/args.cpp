@@ -13,6 +13,10 @@ Args::Args(const CommandSpec& spec, const std::vector<std::string>& argv) : spec
       help_ = true;
       continue;
     }
+    if (a == "--version") {
+      version_ = true;
+      continue;
+    }
     if (a.rfind("--", 0) != 0 || a.size() == 2) {
       positionals_.push_back(a);
       continue;
@@ -36,7 +40,7 @@ Args::Args(const CommandSpec& spec, const std::vector<std::string>& argv) : spec
     }
     values_[name] = value;
   }
-  if (help_) return;
+  if (help_ || version_) return;
   if (positionals_.size() < spec.min_positionals)
     throw UsageError("'" + spec.name + "' needs " + spec.synopsis);
   if (positionals_.size() > spec.max_positionals)
@@ -86,6 +90,7 @@ std::string usage(const CommandSpec& spec) {
     os << flag << " " << o.help << "\n";
   }
   os << "  --help                 this text\n";
+  os << "  --version              knoblab's version\n";
   return os.str();
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "knoblab/version.hpp"
 
 namespace knoblab::cli {
 
@@ -27,7 +28,8 @@ void print_overview() {
     name.resize(14, ' ');
     std::cout << name << c.spec.summary.substr(0, c.spec.summary.find('\n')) << "\n";
   }
-  std::cout << "\n'knoblab COMMAND --help' describes one command.\n";
+  std::cout << "\n'knoblab COMMAND --help' describes one command; 'knoblab --version' says which\n"
+               "knoblab this is.\n";
 }
 }  // namespace
 
@@ -40,12 +42,20 @@ int main(int argc, char** argv) {
     print_overview();
     return args.empty() ? 2 : 0;
   }
+  if (args[0] == "--version") {
+    std::cout << "knoblab " << knoblab::kVersion << "\n";
+    return 0;
+  }
   for (const auto& c : commands()) {
     if (c.spec.name != args[0]) continue;
     try {
       Args parsed(c.spec, std::vector<std::string>(args.begin() + 1, args.end()));
       if (parsed.help()) {
         std::cout << usage(c.spec);
+        return 0;
+      }
+      if (parsed.version()) {
+        std::cout << "knoblab " << knoblab::kVersion << "\n";
         return 0;
       }
       return c.run(parsed);
