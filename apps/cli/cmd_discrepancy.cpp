@@ -5,8 +5,12 @@
 #include <cstdio>
 #include <string>
 
+#include "cancel.hpp"
 #include "capture_input.hpp"
 #include "commands.hpp"
+#include "progress.hpp"
+#include "provenance.hpp"
+#include "result_files.hpp"
 #include "knoblab/discovery/discrepancy.hpp"
 #include "knoblab/discovery/report.hpp"
 #include "knoblab/fit/fit_data.hpp"
@@ -20,7 +24,9 @@ const CommandSpec kDiscrepancySpec{
     "Find what the thesis model leaves out of a capture: locate the structured residual,\n"
     "fit candidate effects (stribeck, backlash, detent_shape, periodic_torque, …) with the\n"
     "model, keep those that lower the error on held-out time blocks, and say so. A capture\n"
-    "from the store gets its result stored beside it.",
+    "from the store gets its result stored beside it, with the report files and its\n"
+    "provenance (knoblab results). Ctrl-C cancels it: nothing is written or stored, exit\n"
+    "status 130.",
     {{"input", true, "interchange CSV"},
      {"capture", true, "capture id in the store"},
      {"db", true, "sqlite store"},
@@ -32,7 +38,8 @@ const CommandSpec kDiscrepancySpec{
      {"report", true, "directory for the report: residual plots before/after, whiteness, summary"},
      {"effects", true, "comma-separated candidate effect ids (default: all implemented)"},
      {"alpha", true, "accel (default: the α column, when the CSV has one) or encoder (θ'')"},
-     {"no-filter", false, "skip the Table 6 low-pass filters (data already clean)"}},
+     {"no-filter", false, "skip the Table 6 low-pass filters (data already clean)"},
+     kQuietOption},
     0, 0};
 
 namespace {
@@ -86,13 +93,41 @@ int run_discrepancy(const Args& args) {
     opt.min_reported_gain = pct / 100.0;
   }
   if (args.get("report") == std::optional<std::string>("")) throw UsageError("--report needs a directory");
+  nlohmann::json options = prep_options_json(prep);
+  options["effects"] = nlohmann::json::array();
+  for (const discovery::EffectId e : opt.effects.empty() ? discovery::implemented_effects() : opt.effects)
+    options["effects"].push_back(std::string(discovery::effect_name(e)));
+  options["max_findings"] = opt.max_findings;
+  options["min_gain_percent"] = 100.0 * opt.min_reported_gain;
 
+  Progress progress = Progress::on_stderr(args, "discrepancy");
+  const CancelOnSignal cancel;
+  opt.hooks = progress.hooks();
+  progress.show("reading the input");
   CaptureInput in = read_capture_input(args);  // not const: its store takes the result
+  progress.show("preparing");
   const fit::FitData data = fit::prepare(in.capture, prep);
+  throw_if_cancelled();
   const std::optional<CaptureInput> held = read_heldout_input(args);
+  options["heldout"] = held ? input_json(*held) : nlohmann::json(nullptr);
+  std::optional<fit::FitData> held_data;
+  if (held) held_data = fit::prepare(held->capture, prep);
+  throw_if_cancelled();
   const discovery::DiscrepancyResult r =
-      held ? discovery::discover(data, fit::prepare(held->capture, prep), opt)
-           : discovery::discover(data, opt);
+      held_data ? discovery::discover(data, *held_data, opt) : discovery::discover(data, opt);
+  const std::string json = discovery::to_json(r);
+  std::vector<store::ResultFile> files;  // the report, drawn aside until the result is kept
+  if (args.has("report")) {
+    progress.show("drawing the report");
+    const StagedReport staged;
+    discovery::ReportOptions ro;
+    ro.title = in.title;
+    discovery::write_discrepancy_report(staged.dir(), data, r, ro);
+    files = staged.files();
+  }
+  // The last chance to cancel: from here the result is written out whole.
+  throw_if_cancelled();
+  progress.clear();
 
   const bool json_to_stdout = args.get("json") == std::optional<std::string>("-");
   if (!json_to_stdout) {
@@ -122,17 +157,14 @@ int run_discrepancy(const Args& args) {
     std::printf("final model: %s\n", figures(r.final_model).c_str());
     if (const std::string same = discovery::same_rows_sentence(r); !same.empty()) std::printf("%s\n", same.c_str());
   }
-  const std::string json = discovery::to_json(r);
   if (auto out = args.get("json")) write_text(*out, json);
   if (auto dir = args.get("report")) {
-    discovery::ReportOptions ro;
-    ro.title = in.title;
-    const auto files = discovery::write_discrepancy_report(*dir, data, r, ro);
+    write_result_files(files, *dir);
     if (!json_to_stdout) std::printf("report: %zu files in %s\n", files.size(), dir->c_str());
   }
   if (in.db && in.capture_id) {
-    const std::int64_t id =
-        in.db->insert_discrepancy(*in.capture_id, json, held ? held->capture_id : std::nullopt);
+    const std::int64_t id = in.db->insert_discrepancy(*in.capture_id, json, held ? held->capture_id : std::nullopt,
+                                                      files, provenance_of(in.sha256, options));
     if (!json_to_stdout) std::printf("stored as discrepancy %lld\n", static_cast<long long>(id));
   }
   return 0;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "knoblab/fit/run_hooks.hpp"
 #include "knoblab/version.hpp"
 
 namespace knoblab::cli {
@@ -59,6 +60,10 @@ int main(int argc, char** argv) {
         return 0;
       }
       return c.run(parsed);
+    } catch (const knoblab::fit::Cancelled&) {
+      // Ctrl-C or SIGTERM (cancel.hpp): nothing was written or stored.
+      std::cerr << "knoblab " << c.spec.name << ": cancelled\n";
+      return 130;
     } catch (const UsageError& e) {
       std::cerr << "knoblab " << c.spec.name << ": " << e.what() << "\n"
                 << "try 'knoblab " << c.spec.name << " --help'\n";
