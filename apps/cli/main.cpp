@@ -16,6 +16,7 @@ const std::vector<Command>& commands() {
       {kSimulateSpec, run_simulate}, {kImportSpec, run_import}, {kExportSpec, run_export},
       {kListSpec, run_list},         {kConvertSpec, run_convert}, {kInspectSpec, run_inspect},
       {kFitSpec, run_fit},           {kFitsSpec, run_fits},       {kFitExportSpec, run_fit_export},
+      {kResultsSpec, run_results},
       {kDiscrepancySpec, run_discrepancy}, {kDemoSpec, run_demo}, {kCtlSpec, run_ctl},
   };
   return all;
