@@ -118,9 +118,9 @@ int run_discrepancy(const Args& args) {
   const std::string json = discovery::to_json(r);
   std::vector<store::ResultFile> files;  // the report, drawn aside until the result is kept
   if (args.has("report")) {
-    progress.show("drawing the report");
     const StagedReport staged;
     discovery::ReportOptions ro;
+    ro.hooks = opt.hooks;
     ro.title = in.title;
     discovery::write_discrepancy_report(staged.dir(), data, r, ro);
     files = staged.files();

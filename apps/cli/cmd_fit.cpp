@@ -70,9 +70,9 @@ int run_fit(const Args& args) {
   if (args.has("render-model")) render_model = fit::to_json(fit::reduce_to_render(r, run.data.omega));
   std::vector<store::ResultFile> files;  // the report, drawn aside until the fit is kept
   if (args.has("report")) {
-    progress.show("drawing the report");
     const StagedReport staged;
     fit::ReportOptions ro;
+    ro.hooks = opt.hooks;
     ro.title = title;
     fit::write_report(r, run.data, fit::predict(r, run.data), staged.dir(), ro);
     staged.add("fit.json", json + "\n");

@@ -88,6 +88,21 @@ TEST_F(CancelCli, SigtermDuringAFitExits130AndStoresAndWritesNothing) {
   EXPECT_TRUE(empty_dir(tmp_));
 }
 
+TEST_F(CancelCli, CtrlCWhileAFitDrawsItsReportLeavesNoReportFileAndNoFit) {
+  capture("10", false);
+  const auto report = dir_ / "report";
+  TerminalRun run({"fit", "--capture", "1", "--db", db_, "--report", report.string()}, tmp_);
+  ASSERT_TRUE(run.wait_for("knoblab fit: drawing the report: 1 of 8")) << run.output();
+  ::kill(run.pid(), SIGINT);
+  EXPECT_EQ(run.finish(), 130) << run.output();
+  EXPECT_NE(run.output().find("knoblab fit: cancelled"), std::string::npos) << run.output();
+  // Stopped before the next file, not after all eight.
+  EXPECT_EQ(run.output().find("drawing the report: 3 of 8"), std::string::npos) << run.output();
+  EXPECT_EQ(rows(db_, "fits"), 0);
+  EXPECT_FALSE(std::filesystem::exists(report));
+  EXPECT_TRUE(empty_dir(tmp_));  // the files drawn so far went with the scratch directory
+}
+
 TEST_F(CancelCli, CtrlCDuringASimulationKeepsNoCaptureAndWritesNoCsv) {
   const auto csv = dir_ / "k.csv";
   TerminalRun run({"simulate", "--knob", "moderate-detents", "--seconds", "120", "--sweep", "0,90,1,60", "--db",

@@ -4,6 +4,7 @@
 #include "knoblab/discovery/report.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <cmath>
 #include <cstdio>
 #include <mutex>
@@ -252,8 +253,11 @@ std::vector<fs::path> write_discrepancy_report(const fs::path& dir, const fit::F
   std::vector<fs::path> written;
   {
     const std::lock_guard<std::mutex> lock(fit::plplot_mutex());
+    const std::size_t files = 2 * std::size(pages) + 1;  // and summary.md
     for (const auto& [stem, page] : pages) {
       for (const bool svg : {false, true}) {
+        opt.hooks.report("drawing the report", written.size(), files);
+        opt.hooks.check();
         const fs::path file = dir / (std::string(stem) + (svg ? ".svg" : ".png"));
         fit::write_plot_file(file, svg, [&](const fs::path& tmp) {
           plot::render(page, tmp, svg, opt.width_px, opt.height_px);

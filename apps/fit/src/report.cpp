@@ -24,6 +24,7 @@
 #include <plplot.h>
 
 #include <algorithm>
+#include <iterator>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -855,8 +856,11 @@ std::vector<fs::path> write_report(const FitResult& r, const FitData& data, cons
 
   std::vector<fs::path> written;
   const std::lock_guard<std::mutex> lock(plplot_mutex());
+  const std::size_t files = 2 * std::size(pages);
   for (const auto& [stem, page] : pages) {
     for (const bool svg : {false, true}) {
+      opt.hooks.report("drawing the report", written.size(), files);
+      opt.hooks.check();
       const fs::path file = dir / (std::string(stem) + (svg ? ".svg" : ".png"));
       write_plot_file(file, svg, [&](const fs::path& tmp) {
         render(page, tmp, svg ? "svgcairo" : "pngcairo", svg, opt);

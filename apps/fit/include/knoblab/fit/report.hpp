@@ -22,6 +22,7 @@
 
 #include "knoblab/fit/fit_data.hpp"
 #include "knoblab/fit/knob_fit.hpp"
+#include "knoblab/fit/run_hooks.hpp"
 
 namespace knoblab::fit {
 
@@ -30,6 +31,10 @@ struct ReportOptions {
   int width_px = 1200;
   int height_px = 900;
   std::size_t max_points = 20000;  // raw clouds are thinned evenly to this
+  // Progress ("drawing the report", file k of n) and cancellation, checked
+  // before each file: the report then throws Cancelled, its finished files
+  // left in `dir` (draw into a scratch directory to keep none).
+  RunHooks hooks;
 };
 
 // Creates `dir` if needed and writes the files above; returns their paths.
