@@ -13,8 +13,10 @@
 #include "commands.hpp"
 #include "fit_run.hpp"
 #include "knoblab/model/terms.hpp"
+#include "provenance.hpp"
 #include "knoblab/discovery/discrepancy.hpp"
 #include "knoblab/fit/result_json.hpp"
+#include "knoblab/interchange/digest.hpp"
 #include "knoblab/sim/presets.hpp"
 #include "simulation.hpp"
 
@@ -155,7 +157,9 @@ int run_demo(const Args& args) {
       found[idx] = run.result.detents ? 1.0 / run.result.value("P_pos") : 0.0;
       if (s.capture_id) {
         db.insert_fit(*s.capture_id, fit::model_name(run.result.model), fit::knob_json(run.result),
-                      fit::to_json(run.result));
+                      fit::to_json(run.result), {},
+                      provenance_of(interchange::samples_sha256(s.capture),
+                                    fit_options_json(fit::PrepOptions{}, fit::FitOptions{})));
       }
       // Discovery gets its own, longer capture: 8 s of the sweep holds more
       // (and faster) reversals than the thesis' 5 s, which is what play and

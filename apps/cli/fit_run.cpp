@@ -9,7 +9,9 @@ namespace knoblab::cli {
 FitRun fit_capture(const interchange::Capture& capture, const fit::PrepOptions& prep,
                const fit::FitOptions& options) {
   FitRun run;
+  options.hooks.report("preparing");
   run.data = fit::prepare(capture, prep);
+  options.hooks.check();
   run.result = fit::fit_knob(run.data, options);
   return run;
 }

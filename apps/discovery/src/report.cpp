@@ -4,6 +4,7 @@
 #include "knoblab/discovery/report.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -317,10 +318,15 @@ std::vector<fs::path> write_discrepancy_report(const fs::path& dir, const fit::F
   const Report report = build(data, r, opt);
   std::vector<fs::path> written;
   try {
-    written = plot::write_figures(report.figures, dir, opt.figure);
+    written = plot::write_figures(report.figures, dir, opt.figure, [&opt](std::size_t done, std::size_t total) {
+      opt.hooks.report("drawing the report", done, total);
+      opt.hooks.check();
+    });
     const fs::path md = dir / "summary.md";
     interchange::write_file_atomically(md, report.markdown);
     written.push_back(md);
+  } catch (const fit::Cancelled&) {
+    throw;  // as it is: the command says "cancelled"
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(std::string(kWho) + e.what());
   } catch (const std::exception& e) {

@@ -395,7 +395,12 @@ std::vector<fs::path> write_report(const FitResult& r, const FitData& data, cons
                                    const ReportOptions& opt) {
   const auto figures = report_figures(r, data, p, opt);
   try {
-    return plot::write_figures(figures, dir, opt.figure);
+    return plot::write_figures(figures, dir, opt.figure, [&opt](std::size_t done, std::size_t total) {
+      opt.hooks.report("drawing the report", done, total);
+      opt.hooks.check();
+    });
+  } catch (const Cancelled&) {
+    throw;  // as it is: the command says "cancelled"
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(std::string("knoblab::fit::write_report: ") + e.what());
   } catch (const std::runtime_error& e) {

@@ -55,7 +55,7 @@ void require_formats(const std::vector<Format>& formats) {
 }
 
 std::vector<fs::path> write_figures(const std::vector<NamedFigure>& figures, const fs::path& dir,
-                                    const FigureOptions& opt) {
+                                    const FigureOptions& opt, const BeforeFigure& before_each) {
   validate(opt);
   std::error_code ec;
   fs::create_directories(dir, ec);
@@ -64,6 +64,7 @@ std::vector<fs::path> write_figures(const std::vector<NamedFigure>& figures, con
                              (ec ? ec.message() : std::string("not a directory")));
   std::vector<fs::path> written;
   for (const NamedFigure& f : figures) {
+    if (before_each) before_each(static_cast<std::size_t>(&f - figures.data()), figures.size());
     const auto files = write_figure(f.figure, dir, f.stem, opt);
     written.insert(written.end(), files.begin(), files.end());
   }

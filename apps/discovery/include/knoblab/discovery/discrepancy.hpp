@@ -30,6 +30,7 @@
 #include "knoblab/discovery/effects.hpp"
 #include "knoblab/fit/fit_data.hpp"
 #include "knoblab/fit/knob_fit.hpp"
+#include "knoblab/fit/run_hooks.hpp"
 
 namespace knoblab::discovery {
 
@@ -45,6 +46,10 @@ struct DiscrepancyOptions {
   double min_reported_gain = 0.20;
   std::size_t max_findings = 4;
   std::vector<EffectId> effects;    // candidates; empty: every implemented one
+  // Progress ("fitting the base model", "trying candidates, round N" k of
+  // n, "residual tests") and cancellation, checked in the base fit's Ceres
+  // iterations and between candidates: discover() throws fit::Cancelled.
+  fit::RunHooks hooks;
 };
 
 using Params = std::vector<std::pair<std::string, double>>;
@@ -145,7 +150,8 @@ struct DiscrepancyResult {
 // The effects discover() can fit today.
 std::vector<EffectId> implemented_effects();
 
-// Throws fit::FitDataError when the data cannot identify the base model.
+// Throws fit::FitDataError when the data cannot identify the base model,
+// fit::Cancelled when opt.hooks says so.
 DiscrepancyResult discover(const fit::FitData& data, const DiscrepancyOptions& opt = {});
 
 // The same, trained on the whole of `data` and scored on another recording

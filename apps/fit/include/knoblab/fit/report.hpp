@@ -26,6 +26,7 @@
 #include "knoblab/fit/knob_fit.hpp"
 #include "knoblab/fit/plot/figure_files.hpp"
 #include "knoblab/fit/plot/figure_options.hpp"
+#include "knoblab/fit/run_hooks.hpp"
 
 namespace knoblab::fit {
 
@@ -33,6 +34,10 @@ struct ReportOptions {
   std::string title;                // e.g. the knob or capture name, shown on every figure
   plot::FigureOptions figure;       // formats, printed size, PNG dpi
   std::size_t max_points = 20000;   // raw clouds are thinned evenly to this
+  // Progress ("drawing the report", figure k of n) and cancellation, checked
+  // before each figure: the report then throws Cancelled, its finished files
+  // left in `dir` (draw into a scratch directory to keep none).
+  RunHooks hooks;
 };
 
 // The figures above, as data. `p` is predict(r, data). Throws

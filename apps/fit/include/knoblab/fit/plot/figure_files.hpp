@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -32,9 +33,14 @@ struct NamedFigure {
   Figure figure;
 };
 
+// Called before each figure with how many are done and how many there are:
+// progress, and the place to cancel (by throwing) between figures.
+using BeforeFigure = std::function<void(std::size_t done, std::size_t total)>;
+
 // Creates `dir` if needed (std::runtime_error naming it when it cannot) and
 // writes every figure; returns all the paths.
 std::vector<std::filesystem::path> write_figures(const std::vector<NamedFigure>& figures,
-                                                 const std::filesystem::path& dir, const FigureOptions& opt);
+                                                 const std::filesystem::path& dir, const FigureOptions& opt,
+                                                 const BeforeFigure& before_each = {});
 
 }  // namespace knoblab::fit::plot
