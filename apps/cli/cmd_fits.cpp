@@ -9,20 +9,24 @@
 #include "result_files.hpp"
 #include "result_view.hpp"
 #include "store_open.hpp"
+#include "table_output.hpp"
 #include "knoblab/interchange/atomic_file.hpp"
 #include "knoblab/store/store.hpp"
 
 namespace knoblab::cli {
 
 const CommandSpec kFitsSpec{
-    "fits", "--db FILE [--capture ID]",
+    "fits", "--db FILE.sqlite [--capture ID] [--json | --csv]",
     "List the stored fits with the key figures of each, and their provenance.\n"
     "For each: model, when, rms error, percent fit, detents per revolution, how many\n"
     "report files it has, and its provenance: the knoblab version that made it and the\n"
     "first 12 hex digits of its input's SHA-256 ('-' for fits stored before schema 7;\n"
     "knoblab results ID --kind fit shows all of it).",
-    {{"db", true, "sqlite store"}, {"capture", true, "only the fits of this capture"}},
-    0, 0, false, {"knoblab fits --db lab.sqlite --capture 1"}};
+    {{"db", true, "sqlite store"},
+     {"capture", true, "only the fits of this capture"},
+     {"json", false, "print the list as a JSON array (SI units, the full SHA-256)"},
+     {"csv", false, "print the list as CSV under a header (SI units, the full SHA-256)"}},
+    0, 0, false, {"knoblab fits --db lab.sqlite --capture 1", "knoblab fits --db lab.sqlite --csv > fits.csv"}};
 
 const CommandSpec kFitExportSpec{
     "fit-export", "FIT --db FILE [--json OUT|-] [--report DIR]",
@@ -41,6 +45,18 @@ int run_fits(const Args& args) {
   if (capture && !db.capture_info(*capture))
     throw std::runtime_error("no capture " + std::to_string(*capture) + " in the store");
   const auto fits = capture ? db.list_fits(*capture) : db.list_all_fits();
+  Table table{{"id", "capture_id", "model", "created_at", "rmse_Nm", "fit_percent", "detents_per_rev", "files",
+               "tool_version", "input_sha256"},
+              {}};
+  for (const auto& f : fits) {
+    const auto result = nlohmann::json::parse(f.result, nullptr, /*allow_exceptions=*/false);
+    const auto value = [](std::optional<double> v) { return v ? nlohmann::json(*v) : nlohmann::json(); };
+    table.rows.push_back({f.id, f.capture_id, f.model, f.created_at, value(number_at(result, {"rmse_Nm"})),
+                          value(number_at(result, {"fit_percent"})), value(number_at(result, {"detents", "per_rev"})),
+                          f.file_count, f.provenance ? nlohmann::json(f.provenance->tool_version) : nlohmann::json(),
+                          f.provenance ? nlohmann::json(f.provenance->input_sha256) : nlohmann::json()});
+  }
+  if (print_table_if_asked(args, table)) return 0;
   std::printf("%6s %8s  %-8s %-24s %10s %6s %11s %5s  %-8s %s\n", "id", "capture", "model", "created",
               "rmse_Nm", "fit_%", "detents/rev", "files", "version", "input");
   for (const auto& f : fits) {

@@ -18,9 +18,9 @@
 namespace knoblab::cli {
 
 const CommandSpec kResultsSpec{
-    "results", "--db FILE [--json] | ID --kind fit|discrepancy --db FILE [--json] [--out DIR]",
-    "List the stored results, fits and discrepancy results together, oldest first:\n"
-    "kind, id, capture, when, the knoblab version that made it, how many report\n"
+    "results", "--db FILE.sqlite [--json] | ID --kind fit|discrepancy --db FILE.sqlite [--json] [--out DIR]",
+    "List the stored results, fits and discrepancy results together, or show one.\n"
+    "The list, oldest first: kind, id, capture, when, the knoblab version that made it, how many report\n"
     "files it has and its key figure (mN·m). With an ID and its --kind, one result:\n"
     "its provenance in full (the SHA-256 of the capture's samples it analysed, the\n"
     "options it ran with) and its files; --out DIR writes its result.json,\n"
@@ -28,9 +28,10 @@ const CommandSpec kResultsSpec{
     "as JSON records (docs/store.md).",
     {{"db", true, "sqlite store"},
      {"json", false, "JSON records instead of text"},
-     {"kind", true, "fit or discrepancy: which result ID names"},
-     {"out", true, "with ID: the directory to write the result into (created if missing)"}},
-    0, 1};
+     {"kind", true, "fit or discrepancy: which result ID names", "fit|discrepancy"},
+     {"out", true, "with ID: the directory to write the result into (created if missing)", "DIR"}},
+    0, 1, false,
+    {"knoblab results --db lab.sqlite", "knoblab results 2 --kind discrepancy --db lab.sqlite --out result-2/"}};
 
 namespace {
 

@@ -92,12 +92,12 @@ TEST_F(CancelCli, CtrlCWhileAFitDrawsItsReportLeavesNoReportFileAndNoFit) {
   capture("10", false);
   const auto report = dir_ / "report";
   TerminalRun run({"fit", "--capture", "1", "--db", db_, "--report", report.string()}, tmp_);
-  ASSERT_TRUE(run.wait_for("knoblab fit: drawing the report: 1 of 8")) << run.output();
+  ASSERT_TRUE(run.wait_for("knoblab fit: drawing the report: 1 of 4")) << run.output();
   ::kill(run.pid(), SIGINT);
   EXPECT_EQ(run.finish(), 130) << run.output();
   EXPECT_NE(run.output().find("knoblab fit: cancelled"), std::string::npos) << run.output();
-  // Stopped before the next file, not after all eight.
-  EXPECT_EQ(run.output().find("drawing the report: 3 of 8"), std::string::npos) << run.output();
+  // Stopped before the next figure, not after all four.
+  EXPECT_EQ(run.output().find("drawing the report: 3 of 4"), std::string::npos) << run.output();
   EXPECT_EQ(rows(db_, "fits"), 0);
   EXPECT_FALSE(std::filesystem::exists(report));
   EXPECT_TRUE(empty_dir(tmp_));  // the files drawn so far went with the scratch directory

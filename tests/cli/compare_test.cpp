@@ -115,8 +115,8 @@ TEST_F(Captures, TheReportOverlaysBothKnobsInTheirColours) {
     for (std::uint32_t y = 0; y < img.height; ++y)
       for (std::uint32_t x = 0; x < img.width; ++x) {
         const auto c = img.at(x, y);
-        blue += c[0] < 60 && c[1] < 110 && c[2] > 130 ? 1 : 0;    // A's line (20, 70, 170)
-        orange += c[0] > 170 && c[1] < 120 && c[2] < 40 ? 1 : 0;  // B's line (200, 90, 0)
+        blue += c[0] < 70 && c[1] > 90 && c[1] < 150 && c[2] > 150 ? 1 : 0;     // A's line (31, 119, 180)
+        orange += c[0] > 220 && c[1] > 95 && c[1] < 160 && c[2] < 60 ? 1 : 0;  // B's line (255, 127, 14)
       }
     EXPECT_GT(blue, 500u) << name;
     EXPECT_GT(orange, 500u) << name;

@@ -74,14 +74,14 @@ TEST_F(ResultsCli, AStoredFitKeepsItsReportFilesAndItsProvenance) {
   const RunResult r = fit_with_report();
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto written = files_in(dir_ / "fit_report");
-  EXPECT_EQ(written.size(), 9u);  // four plots as PNG and SVG, fit.json
-  EXPECT_NE(r.out.find("report: 9 files in "), std::string::npos) << r.out;
+  EXPECT_EQ(written.size(), 17u);  // four figures as PDF, SVG, PNG and CSV, fit.json
+  EXPECT_NE(r.out.find("report: 17 files in "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("stored as fit 1\n"), std::string::npos) << r.out;
 
   auto store = store::Store::open(db_);
   const auto fit = store.fit_info(1);
   ASSERT_TRUE(fit);
-  EXPECT_EQ(fit->file_count, 9);
+  EXPECT_EQ(fit->file_count, 17);
   EXPECT_EQ(as_map(store.load_fit_files(1)), written);  // the same bytes as the report directory
   EXPECT_EQ(written.at("fit.json"), fit->result + "\n");
   ASSERT_TRUE(fit->provenance);
@@ -98,7 +98,7 @@ TEST_F(ResultsCli, AStoredFitKeepsItsReportFilesAndItsProvenance) {
   ASSERT_EQ(rows.size(), 1u) << fits.out;
   std::string version = KNOBLAB_PROJECT_VERSION;
   version.resize(8, ' ');
-  const std::string tail = "     9  " + version + " " + sha_[1].substr(0, 12);
+  const std::string tail = "    17  " + version + " " + sha_[1].substr(0, 12);
   EXPECT_EQ(rows[0].substr(rows[0].size() - tail.size()), tail) << rows[0];
 }
 
@@ -106,13 +106,13 @@ TEST_F(ResultsCli, AStoredDiscrepancyResultKeepsItsReportFilesAndItsProvenance) 
   const RunResult r = discrepancy_with_report();
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto written = files_in(dir_ / "d_report");
-  EXPECT_EQ(written.size(), 11u);  // five plots as PNG and SVG, summary.md
+  EXPECT_EQ(written.size(), 21u);  // five figures as PDF, SVG, PNG and CSV, summary.md
   EXPECT_NE(r.out.find("stored as discrepancy 1\n"), std::string::npos) << r.out;
 
   auto store = store::Store::open(db_);
   const auto d = store.discrepancy_info(1);
   ASSERT_TRUE(d);
-  EXPECT_EQ(d->file_count, 11);
+  EXPECT_EQ(d->file_count, 21);
   EXPECT_EQ(as_map(store.load_discrepancy_files(1)), written);
   ASSERT_TRUE(d->provenance);
   EXPECT_EQ(d->provenance->tool_version, KNOBLAB_PROJECT_VERSION);
@@ -137,11 +137,11 @@ TEST_F(ResultsCli, ListsFitsAndDiscrepancyResultsTogetherAndWritesOneOutWhole) {
   ASSERT_EQ(lines_starting(r.out, "kind ").size(), 1u) << r.out;
   const auto fit_rows = lines_starting(r.out, "fit               1        1  ");
   ASSERT_EQ(fit_rows.size(), 1u) << r.out;
-  EXPECT_NE(fit_rows[0].find("  " + version + "        9  rmse "), std::string::npos) << fit_rows[0];
+  EXPECT_NE(fit_rows[0].find("  " + version + "       17  rmse "), std::string::npos) << fit_rows[0];
   EXPECT_NE(fit_rows[0].find(" mN·m, 12.00 detents/rev"), std::string::npos) << fit_rows[0];
   const auto d_rows = lines_starting(r.out, "discrepancy       1        1  ");
   ASSERT_EQ(d_rows.size(), 1u) << r.out;
-  EXPECT_NE(d_rows[0].find("  " + version + "       11  held-out rms "), std::string::npos) << d_rows[0];
+  EXPECT_NE(d_rows[0].find("  " + version + "       21  held-out rms "), std::string::npos) << d_rows[0];
   EXPECT_LT(r.out.find("\nfit "), r.out.find("\ndiscrepancy "));  // oldest first
 
   r = run_knoblab({"results", "--db", db_, "--json"});
@@ -149,13 +149,13 @@ TEST_F(ResultsCli, ListsFitsAndDiscrepancyResultsTogetherAndWritesOneOutWhole) {
   const auto all = nlohmann::json::parse(r.out);
   ASSERT_EQ(all.size(), 2u);
   EXPECT_EQ(all[0]["kind"], "fit");
-  EXPECT_EQ(all[0]["files"], 9);
+  EXPECT_EQ(all[0]["files"], 17);
   EXPECT_EQ(all[0]["input_sha256"], sha_[1]);
   EXPECT_EQ(all[0]["options"]["model"], "thesis6");
   EXPECT_GT(all[0]["key"]["rmse_Nm"].get<double>(), 0.0);
   EXPECT_EQ(all[1]["kind"], "discrepancy");
   EXPECT_EQ(all[1]["heldout_capture_id"], 2);
-  EXPECT_EQ(all[1]["files"], 11);
+  EXPECT_EQ(all[1]["files"], 21);
   EXPECT_EQ(all[1]["tool_version"], version);
 
   // One of them, whole.
@@ -170,10 +170,10 @@ TEST_F(ResultsCli, ListsFitsAndDiscrepancyResultsTogetherAndWritesOneOutWhole) {
   EXPECT_EQ(provenance["kind"], "discrepancy");
   EXPECT_EQ(provenance["input_sha256"], sha_[1]);
   EXPECT_EQ(provenance["options"]["heldout"]["sha256"], sha_[2]);
-  EXPECT_EQ(provenance["report"].size(), 11u);
+  EXPECT_EQ(provenance["report"].size(), 21u);
   std::size_t total = 0;
   for (const auto& f : store.load_discrepancy_files(1)) total += f.bytes.size();
-  EXPECT_EQ(r.out, "discrepancy 1: result.json, provenance.json and 11 report files (" + std::to_string(total) +
+  EXPECT_EQ(r.out, "discrepancy 1: result.json, provenance.json and 21 report files (" + std::to_string(total) +
                        " bytes) written to " + out.string() + "\n");
 
   // Its description on the screen.
@@ -182,7 +182,7 @@ TEST_F(ResultsCli, ListsFitsAndDiscrepancyResultsTogetherAndWritesOneOutWhole) {
   EXPECT_NE(r.out.find("fit 1 of capture 1, stored "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("  made by:   knoblab " + version + "\n"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("  input:     SHA-256 " + sha_[1] + " of capture 1's samples\n"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("  files:     9:\n    ci_torque.png ("), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("  files:     17:\n    ci_torque.csv ("), std::string::npos) << r.out;
 }
 
 TEST_F(ResultsCli, RefusesWhatItCannotDoAndWritesNothing) {
