@@ -27,7 +27,12 @@ using Term = std::function<double(const model::ThesisModel<double>&, double)>;
 
 plot::Series cloud(const CompareSide& s, const std::string& name, const std::vector<double> fit::FitData::*x,
                    const Part& part, plot::Rgb color) {
-  plot::Series out{name, s.data ? name.substr(0, 1) == "a" ? "A data" : "B data" : "", plot::Mark::Dots, color, 0.3};
+  plot::Series out;
+  out.name = name;
+  out.label = s.data ? (name.substr(0, 1) == "a" ? "A data" : "B data") : "";
+  out.mark = plot::Mark::Dots;
+  out.color = color;
+  out.size_mm = 0.3;
   if (!s.data) return out;
   const fit::FitData& d = *s.data;
   const std::size_t step = std::max<std::size_t>(1, d.size() / kMaxPoints);
@@ -40,7 +45,12 @@ plot::Series cloud(const CompareSide& s, const std::string& name, const std::vec
 
 plot::Series curve(const CompareSide& s, const std::string& name, const std::string& label, double lo, double hi,
                    const Term& term, plot::Rgb color) {
-  plot::Series out{name, label, plot::Mark::Line, color, 0.5};
+  plot::Series out;
+  out.name = name;
+  out.label = label;
+  out.mark = plot::Mark::Line;
+  out.color = color;
+  out.size_mm = 0.5;
   constexpr int kSteps = 2000;
   for (int k = 0; k <= kSteps; ++k) {
     const double x = lo + (hi - lo) * k / kSteps;
