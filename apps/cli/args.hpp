@@ -39,7 +39,7 @@ class Args {
   Args(const CommandSpec& spec, const std::vector<std::string>& argv);
 
   bool help() const { return help_; }
-  bool version() const { return version_; }
+  bool version() const { return version_; }  // --version: every command takes it
   bool has(const std::string& name) const { return values_.count(name) != 0; }
   std::optional<std::string> get(const std::string& name) const;
   std::string require(const std::string& name) const;

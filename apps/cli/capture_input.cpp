@@ -7,6 +7,7 @@
 
 #include "knoblab/interchange/atomic_file.hpp"
 #include "knoblab/interchange/csv.hpp"
+#include "knoblab/interchange/digest.hpp"
 #include "store_open.hpp"
 
 namespace knoblab::cli {
@@ -21,12 +22,15 @@ std::optional<CaptureInput> read_from(const Args& args, const std::optional<std:
     if (args.has(id_key)) throw UsageError("give " + file_words + " or --" + id_key + ", not both");
     in.capture = interchange::read_csv(*input);
     in.title = std::filesystem::path(*input).filename().string();
+    in.sha256 = interchange::file_sha256(*input);
+    in.file = *input;
   } else if (auto id = args.get(id_key)) {
     in.db.emplace(open_store_to_add(args.require("db")));
     in.capture_id = parse_id("--" + id_key, *id);
     const auto info = in.db->capture_info(*in.capture_id);
     if (!info) throw std::runtime_error("no capture " + *id + " in the store");
     in.capture = in.db->load_samples(*in.capture_id);
+    in.sha256 = interchange::samples_sha256(in.capture);
     in.title = "capture " + *id + (info->knob.empty() ? "" : " (" + info->knob + ")");
   } else {
     return std::nullopt;

@@ -18,6 +18,10 @@ struct CaptureInput {
   std::string title;                       // file name, or "capture N (knob)"
   std::optional<store::Store> db;          // open when read from the store
   std::optional<std::int64_t> capture_id;
+  // SHA-256 naming the input (docs/store.md): of the samples for a stored
+  // capture (interchange::samples_sha256), of the file's bytes for a CSV.
+  std::string sha256;
+  std::string file;  // the CSV's path as given; empty for a stored capture
 };
 
 // Throws UsageError when neither or both sources are given.

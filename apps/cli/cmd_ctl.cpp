@@ -24,6 +24,7 @@
 #include "knoblab/control/client.hpp"
 #include "knoblab/control/schema.hpp"
 #include "knoblab/control/telemetry_reader.hpp"
+#include "knoblab/hapticd/model_file.hpp"
 
 namespace knoblab::cli {
 
@@ -109,12 +110,16 @@ std::string ctl_summary() {
   return "Send one request to hapticd and print its result as JSON, or watch its events.\n"
          "\n"
          "  knoblab ctl [--socket PATH] COMMAND [key=value ...]\n"
+         "  knoblab ctl [--socket PATH] load_model FILE.json\n"
          "  knoblab ctl [--socket PATH] --json '{\"command\": \"set_mode\", \"args\": {\"mode\": \"render\"}}'\n"
          "  knoblab ctl [--socket PATH] --watch [--events state,fault_latched] [--telemetry] [--count N]\n"
          "\n"
          "A value is JSON when it parses as JSON (numbers, true/false, null, arrays,\n"
          "objects, \"quoted\" strings), else a string: knob=12 sends a number, knob='\"12\"'\n"
          "a string. Dotted keys nest: swept_sine.a=0 sends {\"swept_sine\": {\"a\": 0}}.\n"
+         "load_model FILE sends a model file's render model and effects (knoblab fit\n"
+         "--render-model, knoblab discrepancy --model-out); effects hapticd cannot render\n"
+         "are refused, named, before anything is sent (exit 2).\n"
          "hapticd checks the arguments; ranges and rules are in docs/protocol.md §7.\n"
          "--watch prints one JSON line per event ({\"event\": NAME, \"data\": {...}}) and,\n"
          "with --telemetry, per telemetry record ({\"telemetry\": {...}}), until\n"
@@ -159,6 +164,14 @@ void place(json& args, const std::string& key, json value) {
 
 Request from_words(std::span<const std::string> words) {
   if (words.empty()) throw UsageError("name a COMMAND (see --help), or use --json or --watch");
+  // load_model FILE: a model file's render model and effects.
+  if (words.size() == 2 && words[0] == "load_model" && words[1].find('=') == std::string::npos) {
+    try {
+      return {words[0], hapticd::read_model_file_args(words[1])};
+    } catch (const hapticd::ModelFileError& e) {
+      throw UsageError(std::string("load_model: ") + e.what());
+    }
+  }
   Request r{words.front(), json::object()};
   for (const auto& w : words.subspan(1)) {
     const auto eq = w.find('=');
@@ -370,7 +383,7 @@ int watch(const Args& args, const std::string& path, milliseconds timeout) {
 }  // namespace
 
 const CommandSpec kCtlSpec{
-    "ctl", "[--socket PATH] (COMMAND [key=value ...] | --json JSON | --watch [--events LIST] [--telemetry])",
+    "ctl", "[--socket PATH] (COMMAND [key=value ...] | load_model FILE | --json JSON | --watch [--events LIST] [--telemetry])",
     ctl_summary(),
     {{"socket", true, "hapticd's control socket (default $KNOBLAB_SOCKET, else /run/knoblab/hapticd.sock)"},
      {"json", true, "the request as {\"command\": NAME, \"args\": {...}}", "REQUEST"},

@@ -12,8 +12,11 @@
 
 #include "commands.hpp"
 #include "fit_run.hpp"
+#include "knoblab/model/terms.hpp"
+#include "provenance.hpp"
 #include "knoblab/discovery/discrepancy.hpp"
 #include "knoblab/fit/result_json.hpp"
+#include "knoblab/interchange/digest.hpp"
 #include "knoblab/sim/presets.hpp"
 #include "simulation.hpp"
 
@@ -60,34 +63,49 @@ void print_knob(const DemoKnob& k, const sim::KnobParams& truth, const fit::FitR
   const auto* t1 = sim::presets::table7(k.id, 1);
   const auto* t2 = sim::presets::table7(k.id, 2);
   const bool det = truth.detents.A != 0.0;
+  // The truth in the fit's spelling (A ≥ 0, S in (−π, π]), so equal detents read alike.
+  const model::Detents<double> td = model::canonical(truth.detents);
   const Row rows[] = {
       {"M_acc  mN·m/(rad/s²)", "M_acc", 1e3, truth.inertia.M, t1->M, t2->M},
       {"C_vel- mN·m", "C_vel_neg", 1e3, truth.friction.C_neg, t1->C_neg, t2->C_neg},
       {"B_vel- mN·m/(rad/s)", "B_vel_neg", 1e3, truth.friction.B_neg, t1->B_neg, t2->B_neg},
       {"C_vel+ mN·m", "C_vel_pos", 1e3, truth.friction.C_pos, t1->C_pos, t2->C_pos},
       {"B_vel+ mN·m/(rad/s)", "B_vel_pos", 1e3, truth.friction.B_pos, t1->B_pos, t2->B_pos},
-      {"A_pos  mN·m", "A_pos", 1e3, truth.detents.A, t1->A, t2->A},
-      {"P_pos  rad", "P_pos", 1.0, truth.detents.P, t1->P, t2->P},
-      {"S_pos  rad", "S_pos", 1.0, truth.detents.S, t1->S, t2->S},
+      {"A_pos  mN·m", "A_pos", 1e3, td.A, t1->A, t2->A},
+      {"P_pos  rad", "P_pos", 1.0, td.P, t1->P, t2->P},
+      {"S_pos  rad", "S_pos", 1.0, td.S, t1->S, t2->S},
   };
-  std::printf("  %-21s %11s %25s %11s %11s %11s\n", "parameter", "fitted", "95% CI", "true (sim)",
+  std::printf("  %-21s %11s %25s %11s  %11s %11s\n", "parameter", "fitted", "95% CI", "true (sim)",
               "Table 7 #1", "Table 7 #2");
+  int outside = 0, compared = 0;
   for (const Row& row : rows) {
     const std::size_t i = r.index(row.name);
+    const bool has_truth = det || row.name[0] == 'M' || row.name[0] == 'C' || row.name[0] == 'B';
     std::printf("  %-21s", row.label);
     print_cell(r.params[i] * row.scale, r.fitted[i]);
+    bool missed = false;
     if (r.fitted[i]) {
       char ci[40];
       std::snprintf(ci, sizeof ci, "[%.4g, %.4g]", r.ci95[i][0] * row.scale, r.ci95[i][1] * row.scale);
       std::printf(" %25s", ci);
+      if (has_truth) {
+        ++compared;
+        missed = row.truth < r.ci95[i][0] || row.truth > r.ci95[i][1];
+        outside += missed ? 1 : 0;
+      }
     } else {
       std::printf(" %25s", "(no detents found)");
     }
-    print_cell(row.truth * row.scale, det || row.name[0] == 'M' || row.name[0] == 'C' || row.name[0] == 'B');
+    print_cell(row.truth * row.scale, has_truth);
+    std::printf("%s", missed ? "!" : " ");
     print_cell(row.table7_1, true);
     print_cell(row.table7_2, true);
     std::printf("\n");
   }
+  if (outside > 0)
+    std::printf("  ! the true value lies outside the 95%% CI (%d of %d parameters; about 1 in 20 is\n"
+                "    expected by chance, more means the model or the noise estimate misses something)\n",
+                outside, compared);
   if (r.stick) {
     std::printf("  stick band (Eq. 7): Δv %.3g rad/s, D− %.3g, D+ %.3g mN·m   (true %.3g rad/s, %.3g, %.3g;"
                 " Table 7 %.3g, %.3g, %.3g)\n",
@@ -114,8 +132,11 @@ int run_demo(const Args& args) {
 
   std::printf("knoblab demo: the five thesis knobs (Table 5), captured in simulation and fitted\n");
   std::printf("(Table 3 spatial swept sine, PID Kp 200 Ki 5000 Kd 1.0, lab mounting; Table 6\n"
-              "filters; Eq. 6 by Ceres with no starting values; Table 7 printed for comparison,\n"
-              "its signs and swapped P values as printed)\n");
+              "filters; Eq. 6 by Ceres with no starting values)\n"
+              "Fitted and true values share one sign convention: friction C_vel+ + B_vel+·ω for\n"
+              "ω > 0 and −C_vel− + B_vel−·ω for ω < 0 (both C ≥ 0 for a knob that resists), detents\n"
+              "A_pos ≥ 0 with S_pos in (−π, π]. Table 7 is printed as the thesis printed it: its\n"
+              "negative-direction terms signed, some detent periods swapped between knobs.\n");
   int failures = 0;
   double found[5] = {};
   std::vector<std::string> discrepancies;  // per knob, what discovery says is missing
@@ -136,7 +157,9 @@ int run_demo(const Args& args) {
       found[idx] = run.result.detents ? 1.0 / run.result.value("P_pos") : 0.0;
       if (s.capture_id) {
         db.insert_fit(*s.capture_id, fit::model_name(run.result.model), fit::knob_json(run.result),
-                      fit::to_json(run.result));
+                      fit::to_json(run.result), {},
+                      provenance_of(interchange::samples_sha256(s.capture),
+                                    fit_options_json(fit::PrepOptions{}, fit::FitOptions{})));
       }
       // Discovery gets its own, longer capture: 8 s of the sweep holds more
       // (and faster) reversals than the thesis' 5 s, which is what play and

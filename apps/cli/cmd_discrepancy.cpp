@@ -5,8 +5,13 @@
 #include <cstdio>
 #include <string>
 
+#include "cancel.hpp"
 #include "capture_input.hpp"
 #include "commands.hpp"
+#include "figure_args.hpp"
+#include "progress.hpp"
+#include "provenance.hpp"
+#include "result_files.hpp"
 #include "knoblab/discovery/discrepancy.hpp"
 #include "knoblab/discovery/report.hpp"
 #include "knoblab/fit/fit_data.hpp"
@@ -16,27 +21,35 @@ namespace knoblab::cli {
 const CommandSpec kDiscrepancySpec{
     "discrepancy",
     "(FILE.csv | --capture ID --db FILE.sqlite) [--heldout FILE.csv | --heldout-capture ID]\n"
-    "  [--json OUT.json|-] [--report DIR] [--effects LIST] [--max-findings N] [--min-gain PCT]",
+    "  [--json OUT.json|-] [--model-out FILE.json] [--report DIR [--format pdf,svg,png]\n"
+    "  [--size 160x100mm] [--dpi 300]] [--effects LIST] [--max-findings N] [--min-gain PCT]",
     "Find what the thesis model leaves out of a capture, and say which physics it is.\n"
     "Locates the structured residual, fits candidate effects (stribeck, backlash,\n"
     "detent_shape, periodic_torque, …) with the model, keeps those that lower the error on\n"
     "held-out time blocks, and says so (text in mN·m, degrees; the JSON in SI units). A\n"
-    "capture from the store gets its result stored beside it.",
-    {{"capture", true, "capture id in the store (instead of FILE.csv)"},
+    "capture from the store gets its result stored beside it, with the report files and\n"
+    "its provenance (knoblab results). --model-out writes the final model (base and kept\n"
+    "effects) as a model file that knoblab simulate --params, knoblab ctl load_model and\n"
+    "hapticd --model take (docs/discrepancy.md). --report writes the figures as PDF, SVG\n"
+    "and PNG, each with its data as CSV (docs/figures.md). Ctrl-C cancels it: nothing is\n"
+    "written or stored, exit status 130.",
+    with_figure_options({{"capture", true, "capture id in the store (instead of FILE.csv)"},
      {"db", true, "sqlite store"},
      {"heldout", true, "another recording of the knob (CSV), held out whole instead of time blocks"},
      {"heldout-capture", true, "… or its capture id in the store"},
      {"max-findings", true, "stop after N findings (default 4)", "N"},
      {"min-gain", true, "held-out RMS cut, in %, the findings must earn together to be reported (default 20)", "PCT"},
      {"json", true, "write the result as JSON (docs/discrepancy.md); '-' for stdout"},
-     {"report", true, "directory for the report: residual plots before/after, whiteness, summary"},
+     {"model-out", true, "write the final model as a model file (simulate --params, ctl load_model)"},
+     {"report", true, "directory for the report: residual figures before/after, whiteness, summary"},
      {"effects", true, "comma-separated candidate effect ids (default: all implemented)", "LIST"},
      {"alpha", true, "accel (default: the α column, when the CSV has one) or encoder (θ'')", "accel|encoder"},
-     {"no-filter", false, "skip the Table 6 low-pass filters (data already clean)"}},
+     {"no-filter", false, "skip the Table 6 low-pass filters (data already clean)"},
+     kQuietOption}),
     0, 1, true,
     {"knoblab simulate --knob moderate-detents --effects 'stribeck:static_excess_Nm=0.004,stribeck_velocity_rad_s=0.5' "
      "--out knob.csv && knoblab discrepancy knob.csv --report report/",
-     "knoblab discrepancy --capture 1 --db lab.sqlite --json found.json"}};
+     "knoblab discrepancy --capture 1 --db lab.sqlite --json found.json --report report/ --format pdf"}};
 
 namespace {
 
@@ -89,13 +102,43 @@ int run_discrepancy(const Args& args) {
     opt.min_reported_gain = pct / 100.0;
   }
   if (args.get("report") == std::optional<std::string>("")) throw UsageError("--report needs a directory");
+  const fit::plot::FigureOptions figure_opts = figure_options(args);  // checked before any work
+  nlohmann::json options = prep_options_json(prep);
+  options["effects"] = nlohmann::json::array();
+  for (const discovery::EffectId e : opt.effects.empty() ? discovery::implemented_effects() : opt.effects)
+    options["effects"].push_back(std::string(discovery::effect_name(e)));
+  options["max_findings"] = opt.max_findings;
+  options["min_gain_percent"] = 100.0 * opt.min_reported_gain;
 
+  Progress progress = Progress::on_stderr(args, "discrepancy");
+  const CancelOnSignal cancel;
+  opt.hooks = progress.hooks();
+  progress.show("reading the input");
   CaptureInput in = read_capture_input(args);  // not const: its store takes the result
+  progress.show("preparing");
   const fit::FitData data = fit::prepare(in.capture, prep);
+  throw_if_cancelled();
   const std::optional<CaptureInput> held = read_heldout_input(args);
+  options["heldout"] = held ? input_json(*held) : nlohmann::json(nullptr);
+  std::optional<fit::FitData> held_data;
+  if (held) held_data = fit::prepare(held->capture, prep);
+  throw_if_cancelled();
   const discovery::DiscrepancyResult r =
-      held ? discovery::discover(data, fit::prepare(held->capture, prep), opt)
-           : discovery::discover(data, opt);
+      held_data ? discovery::discover(data, *held_data, opt) : discovery::discover(data, opt);
+  const std::string json = discovery::to_json(r);
+  std::vector<store::ResultFile> files;  // the report, drawn aside until the result is kept
+  if (args.has("report")) {
+    const StagedReport staged;
+    discovery::ReportOptions ro;
+    ro.figure = figure_opts;
+    ro.hooks = opt.hooks;
+    ro.title = in.title;
+    discovery::write_discrepancy_report(staged.dir(), data, r, ro);
+    files = staged.files();
+  }
+  // The last chance to cancel: from here the result is written out whole.
+  throw_if_cancelled();
+  progress.clear();
 
   const bool json_to_stdout = args.get("json") == std::optional<std::string>("-");
   if (!json_to_stdout) {
@@ -125,17 +168,18 @@ int run_discrepancy(const Args& args) {
     std::printf("final model: %s\n", figures(r.final_model).c_str());
     if (const std::string same = discovery::same_rows_sentence(r); !same.empty()) std::printf("%s\n", same.c_str());
   }
-  const std::string json = discovery::to_json(r);
   if (auto out = args.get("json")) write_text(*out, json);
+  if (auto out = args.get("model-out")) {
+    write_text(*out, discovery::model_file_json(r, data.omega, in.title));
+    if (!json_to_stdout) std::printf("model file: %s\n", out->c_str());
+  }
   if (auto dir = args.get("report")) {
-    discovery::ReportOptions ro;
-    ro.title = in.title;
-    const auto files = discovery::write_discrepancy_report(*dir, data, r, ro);
+    write_result_files(files, *dir);
     if (!json_to_stdout) std::printf("report: %zu files in %s\n", files.size(), dir->c_str());
   }
   if (in.db && in.capture_id) {
-    const std::int64_t id =
-        in.db->insert_discrepancy(*in.capture_id, json, held ? held->capture_id : std::nullopt);
+    const std::int64_t id = in.db->insert_discrepancy(*in.capture_id, json, held ? held->capture_id : std::nullopt,
+                                                      files, provenance_of(in.sha256, options));
     if (!json_to_stdout) std::printf("stored as discrepancy %lld\n", static_cast<long long>(id));
   }
   return 0;

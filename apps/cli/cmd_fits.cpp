@@ -1,27 +1,32 @@
 // knoblab fits / fit-export: the fits in a store, and one fit's result JSON
 // and report files back out as files.
-#include <charconv>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <optional>
 
 #include "commands.hpp"
+#include "result_files.hpp"
+#include "result_view.hpp"
 #include "store_open.hpp"
+#include "table_output.hpp"
 #include "knoblab/interchange/atomic_file.hpp"
 #include "knoblab/store/store.hpp"
 
 namespace knoblab::cli {
 
 const CommandSpec kFitsSpec{
-    "fits", "--db FILE [--capture ID]",
-    "List the stored fits with the key figures of each.\n"
-    "For each: model, when, rms error, percent fit, detents per revolution and how many\n"
-    "report files it has.",
-    {{"db", true, "sqlite store"}, {"capture", true, "only the fits of this capture"}},
-    0, 0, false, {"knoblab fits --db lab.sqlite --capture 1"}};
+    "fits", "--db FILE.sqlite [--capture ID] [--json | --csv]",
+    "List the stored fits with the key figures of each, and their provenance.\n"
+    "For each: model, when, rms error, percent fit, detents per revolution, how many\n"
+    "report files it has, and its provenance: the knoblab version that made it and the\n"
+    "first 12 hex digits of its input's SHA-256 ('-' for fits stored before schema 7;\n"
+    "knoblab results ID --kind fit shows all of it).",
+    {{"db", true, "sqlite store"},
+     {"capture", true, "only the fits of this capture"},
+     {"json", false, "print the list as a JSON array (SI units, the full SHA-256)"},
+     {"csv", false, "print the list as CSV under a header (SI units, the full SHA-256)"}},
+    0, 0, false, {"knoblab fits --db lab.sqlite --capture 1", "knoblab fits --db lab.sqlite --csv > fits.csv"}};
 
 const CommandSpec kFitExportSpec{
     "fit-export", "FIT --db FILE [--json OUT|-] [--report DIR]",
@@ -33,79 +38,42 @@ const CommandSpec kFitExportSpec{
      {"report", true, "directory for the report files (created if missing)"}},
     1, 1, false, {"knoblab fit-export 1 --db lab.sqlite --json fit.json --report fit-1/"}};
 
-namespace {
-
-std::int64_t id_arg(const std::string& what, const std::string& text) {
-  std::int64_t id = 0;
-  auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), id);
-  if (ec != std::errc() || p != text.data() + text.size() || id <= 0)
-    throw UsageError(what + " must be a " + (what == "FIT" ? "fit" : "capture") +
-                     " id (a positive integer), got '" + text + "'");
-  return id;
-}
-
-// The number at `keys` in a result, if there is one (an older fit, another
-// model or a knob without detents may have none).
-std::optional<double> number_at(const nlohmann::json& result,
-                                std::initializer_list<const char*> keys) {
-  const nlohmann::json* j = &result;
-  for (const char* key : keys) {
-    if (!j->is_object()) return std::nullopt;
-    const auto it = j->find(key);
-    if (it == j->end()) return std::nullopt;
-    j = &*it;
-  }
-  if (!j->is_number()) return std::nullopt;
-  return j->get<double>();
-}
-
-// "-" for a figure the result does not have; 'g' or 'f' notation.
-std::string figure(std::optional<double> v, int precision, bool fixed) {
-  if (!v) return "-";
-  char buf[64];
-  if (fixed)
-    std::snprintf(buf, sizeof buf, "%.*f", precision, *v);
-  else
-    std::snprintf(buf, sizeof buf, "%.*g", precision, *v);
-  return buf;
-}
-
-// What fit-export may create inside DIR: one plain file name. The store's
-// schema enforces the same; this guards against a database from elsewhere.
-bool plain_file_name(const std::string& name) {
-  return !name.empty() && name != "." && name != ".." &&
-         name.find_first_of(std::string("/\0", 2)) == std::string::npos;
-}
-
-void write_bytes(const std::filesystem::path& path, const void* data, std::size_t size) {
-  interchange::write_file_atomically(path, std::string_view(static_cast<const char*>(data), size));
-}
-
-}  // namespace
-
 int run_fits(const Args& args) {
   std::optional<std::int64_t> capture;
-  if (auto c = args.get("capture")) capture = id_arg("--capture", *c);
+  if (auto c = args.get("capture")) capture = id_arg("--capture", "capture", *c);
   store::Store db = open_store_to_read(args.require("db"));
   if (capture && !db.capture_info(*capture))
     throw std::runtime_error("no capture " + std::to_string(*capture) + " in the store");
   const auto fits = capture ? db.list_fits(*capture) : db.list_all_fits();
-  std::printf("%6s %8s  %-8s %-24s %10s %6s %11s %5s\n", "id", "capture", "model", "created",
-              "rmse_Nm", "fit_%", "detents/rev", "files");
+  Table table{{"id", "capture_id", "model", "created_at", "rmse_Nm", "fit_percent", "detents_per_rev", "files",
+               "tool_version", "input_sha256"},
+              {}};
   for (const auto& f : fits) {
     const auto result = nlohmann::json::parse(f.result, nullptr, /*allow_exceptions=*/false);
-    std::printf("%6lld %8lld  %-8s %-24s %10s %6s %11s %5zu\n", static_cast<long long>(f.id),
+    const auto value = [](std::optional<double> v) { return v ? nlohmann::json(*v) : nlohmann::json(); };
+    table.rows.push_back({f.id, f.capture_id, f.model, f.created_at, value(number_at(result, {"rmse_Nm"})),
+                          value(number_at(result, {"fit_percent"})), value(number_at(result, {"detents", "per_rev"})),
+                          f.file_count, f.provenance ? nlohmann::json(f.provenance->tool_version) : nlohmann::json(),
+                          f.provenance ? nlohmann::json(f.provenance->input_sha256) : nlohmann::json()});
+  }
+  if (print_table_if_asked(args, table)) return 0;
+  std::printf("%6s %8s  %-8s %-24s %10s %6s %11s %5s  %-8s %s\n", "id", "capture", "model", "created",
+              "rmse_Nm", "fit_%", "detents/rev", "files", "version", "input");
+  for (const auto& f : fits) {
+    const auto result = nlohmann::json::parse(f.result, nullptr, /*allow_exceptions=*/false);
+    std::printf("%6lld %8lld  %-8s %-24s %10s %6s %11s %5lld  %-8s %s\n", static_cast<long long>(f.id),
                 static_cast<long long>(f.capture_id), f.model.c_str(), f.created_at.c_str(),
                 figure(number_at(result, {"rmse_Nm"}), 4, false).c_str(),
                 figure(number_at(result, {"fit_percent"}), 1, true).c_str(),
                 figure(number_at(result, {"detents", "per_rev"}), 2, true).c_str(),
-                db.list_fit_files(f.id).size());
+                static_cast<long long>(f.file_count), version_of(f.provenance).c_str(),
+                short_sha256(f.provenance).c_str());
   }
   return 0;
 }
 
 int run_fit_export(const Args& args) {
-  const std::int64_t id = id_arg("FIT", args.positionals().at(0));
+  const std::int64_t id = id_arg("FIT", "fit", args.positionals().at(0));
   const auto json_out = args.get("json");
   const auto report_dir = args.get("report");
   if (!json_out && !report_dir) throw UsageError("give --json OUT (or -) and/or --report DIR");
@@ -134,22 +102,16 @@ int run_fit_export(const Args& args) {
     if (*json_out == "-") {
       std::fwrite(text.data(), 1, text.size(), stdout);
     } else {
-      write_bytes(*json_out, text.data(), text.size());
+      interchange::write_file_atomically(*json_out, text);
       std::printf("fit %lld: result JSON written to %s\n", static_cast<long long>(id),
                   json_out->c_str());
     }
   }
   if (report_dir) {
-    const std::filesystem::path dir(*report_dir);
-    std::filesystem::create_directories(dir);
-    std::size_t total = 0;
-    for (const auto& f : files) {
-      write_bytes(dir / f.name, f.bytes.data(), f.bytes.size());
-      total += f.bytes.size();
-    }
+    write_result_files(files, *report_dir);
     if (!quiet)
       std::printf("fit %lld: %zu report files (%zu bytes) written to %s\n",
-                  static_cast<long long>(id), files.size(), total, report_dir->c_str());
+                  static_cast<long long>(id), files.size(), total_bytes(files), report_dir->c_str());
   }
   return 0;
 }

@@ -5,10 +5,12 @@
 #include <numbers>
 #include <sstream>
 
+#include "cancel.hpp"
 #include "commands.hpp"
 #include "knob_file.hpp"
 #include "knoblab/interchange/csv.hpp"
 #include "knoblab/sim/presets.hpp"
+#include "progress.hpp"
 #include "simulation.hpp"
 #include "summary.hpp"
 
@@ -32,10 +34,12 @@ const CommandSpec kSimulateSpec{
     "the 180 mN·m torque limit. The samples up to there are still written, with\n"
     "'# status: incomplete' and '# end_reason: fault: …' (the store marks the capture\n"
     "incomplete the same way).\n"
+    "Ctrl-C cancels it: no CSV is written and the store keeps nothing of it (exit\n"
+    "status 130).\n"
     "Presets: 'knoblab simulate --list'.",
     {{"knob", true, "knob preset id (see --list)", "PRESET"},
      {"effects", true, "effects beyond the thesis model, 'id:name=value,…;…', the names discrepancy reports (docs/discrepancy.md)", "SPECS"},
-     {"params", true, "a fit's result JSON (knoblab fit --json) or a render model"},
+     {"params", true, "a fit's result JSON, a render model, or a model file with effects (discrepancy --model-out)"},
      {"seconds", true, "capture length, s (default 5, as the thesis)"},
      {"rate", true, "loop rate, Hz (default 5000; 1..20000)"},
      {"seed", true, "noise seed (default 1)"},
@@ -48,7 +52,8 @@ const CommandSpec kSimulateSpec{
      {"ki", true, "PID Ki, V/(rad·s) (default 5000)"},
      {"kd", true, "PID Kd, V·s/rad (default 1.0)"},
      {"sweep", true, "Eq. 8 constants a,b,c,d (default 0,1.5,1.0,3.0)", "A,B,C,D"},
-     {"list", false, "list the knob presets and exit"}},
+     {"list", false, "list the knob presets and exit"},
+     kQuietOption},
     0, 0, false,
     {"knoblab simulate --knob moderate-detents --out knob.csv",
      "knoblab simulate --params fit.json --seconds 10 --db lab.sqlite",
@@ -98,12 +103,14 @@ int run_simulate(const Args& args) {
     req.knob_name = *id;
   } else {
     const std::string path = args.require("params");
-    req.knob = read_knob_file(path);
+    KnobFile file = read_knob_file(path);
+    req.knob = file.knob;
+    req.effects = std::move(file.effects);  // a model file's; --effects adds to them
     req.knob_name = path;
   }
   if (auto text = args.get("effects")) {
     try {
-      req.effects = model::parse_effect_specs(*text);
+      for (model::EffectSpec& e : model::parse_effect_specs(*text)) req.effects.push_back(std::move(e));
     } catch (const std::invalid_argument& e) {
       throw UsageError(std::string("--effects: ") + e.what());
     }
@@ -123,12 +130,16 @@ int run_simulate(const Args& args) {
   req.pid.Kd = args.number("kd", req.pid.Kd);
   if (auto s = args.get("sweep")) req.stimulus = parse_sweep(*s);
 
+  Progress progress = Progress::on_stderr(args, "simulate");
+  const CancelOnSignal cancel;
+  req.hooks = progress.hooks();
   std::optional<store::Store> db;
   if (auto path = args.get("db")) db.emplace(store::Store::open(*path));
   SimulationResult r;
   try {
     r = simulate(req, db ? &*db : nullptr);
   } catch (const CaptureFailed& failed) {
+    progress.clear();
     // What was captured up to the fault is kept, marked incomplete, for a
     // look at where it went wrong; the exit status says it failed.
     std::string why = failed.what();
@@ -142,6 +153,7 @@ int run_simulate(const Args& args) {
       why += "; the store holds them as incomplete capture " + std::to_string(*part.capture_id);
     throw std::runtime_error(why);
   }
+  progress.clear();
   if (auto out = args.get("out")) interchange::write_csv(r.capture, std::filesystem::path(*out));
 
   const CaptureSummary s = summarize(r.capture);

@@ -3,7 +3,9 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "cancel.hpp"
 #include "commands.hpp"
+#include "progress.hpp"
 #include "store_open.hpp"
 #include "table_output.hpp"
 #include "knoblab/interchange/csv.hpp"
@@ -17,10 +19,12 @@ const CommandSpec kImportSpec{
     "The file is validated first; a bad file changes nothing in the store.\n"
     "Samples go in in short transactions, so hapticd goes on recording into the\n"
     "same store meanwhile; until the import ends the capture is listed as\n"
-    "'recording' (an import that is killed is marked incomplete on the next open).",
+    "'recording' (an import that is killed is marked incomplete on the next open;\n"
+    "one cancelled with Ctrl-C takes its samples out again, exit status 130).",
     {{"db", true, "sqlite store (created if missing)"},
      {"knob", true, "knob name to file the capture under"},
-     {"mode", true, "lab (default) or tripod", "lab|tripod"}},
+     {"mode", true, "lab (default) or tripod", "lab|tripod"},
+     kQuietOption},
     1, 1, true,
     {"knoblab import knob.csv --db lab.sqlite --knob 'fan knob'"}};
 
@@ -98,11 +102,22 @@ store::NewCapture describe_import(const interchange::Capture& capture, const Arg
 int run_import(const Args& args) {
   const std::string file = args.positionals().at(0);
   const std::string db_path = args.require("db");
+  Progress progress = Progress::on_stderr(args, "import");
+  const CancelOnSignal cancel;
+  progress.show("reading " + file);
   // Parse and validate everything before the store is even opened.
   const interchange::Capture capture = interchange::read_csv(file);
   const store::NewCapture info = describe_import(capture, args);
+  throw_if_cancelled();
   store::Store db = store::Store::open(db_path);
-  const std::int64_t id = db.import_capture(capture, info);
+  store::ImportOptions options;
+  // Throwing here takes the partial capture out again (import_capture).
+  options.on_commit = [&](std::int64_t committed) {
+    progress.show("importing", static_cast<std::size_t>(committed), capture.size());
+    throw_if_cancelled();
+  };
+  const std::int64_t id = db.import_capture(capture, info, options);
+  progress.clear();
   std::printf("imported %s: %zu samples as capture %lld%s%s\n", file.c_str(), capture.size(),
               static_cast<long long>(id), capture.omega_derived ? " (omega derived)" : "",
               capture.alpha_derived ? " (alpha derived)" : "");

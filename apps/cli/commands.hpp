@@ -17,7 +17,8 @@ struct Command {
 const std::vector<Command>& commands();
 
 extern const CommandSpec kSimulateSpec, kImportSpec, kExportSpec, kInspectSpec, kDemoSpec,
-    kListSpec, kConvertSpec, kFitSpec, kFitsSpec, kFitExportSpec, kDiscrepancySpec, kCtlSpec;
+    kListSpec, kConvertSpec, kFitSpec, kFitsSpec, kFitExportSpec, kDiscrepancySpec, kCtlSpec, kCompareSpec,
+    kResultsSpec;
 int run_simulate(const Args&);
 int run_import(const Args&);
 int run_export(const Args&);
@@ -28,7 +29,9 @@ int run_convert(const Args&);
 int run_fit(const Args&);
 int run_fits(const Args&);
 int run_fit_export(const Args&);
+int run_results(const Args&);
 int run_discrepancy(const Args&);
 int run_ctl(const Args&);
+int run_compare(const Args&);
 
 }  // namespace knoblab::cli

@@ -9,26 +9,20 @@ namespace knoblab::cli {
 FitRun fit_capture(const interchange::Capture& capture, const fit::PrepOptions& prep,
                const fit::FitOptions& options) {
   FitRun run;
+  options.hooks.report("preparing");
   run.data = fit::prepare(capture, prep);
+  options.hooks.check();
   run.result = fit::fit_knob(run.data, options);
   return run;
 }
 
-namespace {
-
-struct Presentation {
-  const char* unit;
-  double scale;  // SI → presentation
-};
-
 Presentation presentation(std::string_view name) {
   if (name == "M_acc") return {"mN·m/(rad/s²)", 1e3};
   if (name.starts_with("B_vel")) return {"mN·m/(rad/s)", 1e3};
-  if (name.starts_with("C_vel") || name == "A_pos") return {"mN·m", 1e3};
+  if (name.starts_with("C_vel") || name == "A_pos" || name.starts_with("D_")) return {"mN·m", 1e3};
+  if (name == "dv") return {"rad/s", 1.0};
   return {"rad", 1.0};  // P_pos, S_pos
 }
-
-}  // namespace
 
 void print_fit(std::FILE* out, const fit::FitResult& r) {
   std::fprintf(out, "model %s, %zu samples, %d iterations, %.3f s\n",

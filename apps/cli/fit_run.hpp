@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "knoblab/fit/fit_data.hpp"
 #include "knoblab/fit/knob_fit.hpp"
@@ -23,5 +24,13 @@ FitRun fit_capture(const interchange::Capture& capture, const fit::PrepOptions& 
 
 // The fitted parameters in presentation units (mN·m, rad), with 95% CIs.
 void print_fit(std::FILE* out, const fit::FitResult& r);
+
+// A parameter's presentation unit and the factor from SI to it: torques in
+// mN·m, angles in rad (Eq. 6's names, the stick band's dv, D_neg, D_pos).
+struct Presentation {
+  const char* unit;
+  double scale;  // SI → presentation
+};
+Presentation presentation(std::string_view name);
 
 }  // namespace knoblab::cli

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "knoblab/model/effect_json.hpp"
 #include "knoblab/model/models.hpp"
 
 namespace knoblab::cli {
@@ -88,9 +89,29 @@ sim::KnobParams from_render4(const json& doc, const std::string& where) {
   return k;
 }
 
+// {"effect": ID, "params": {name: value}} each, under the names discrepancy
+// reports (the effect table's), checked as --effects is.
+std::vector<model::EffectSpec> effects_of(const json& list, const std::string& where) {
+  if (!list.is_array()) throw std::invalid_argument(where + ": \"effects\" must be a list of {\"effect\": ID, \"params\": {…}}");
+  std::vector<model::EffectSpec> out;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const json& e = list[i];
+    const std::string at = where + ": effects[" + std::to_string(i) + "]";
+    if (!e.is_object() || !e.contains("effect") || !e.at("effect").is_string() || !e.contains("params") ||
+        !e.at("params").is_object())
+      throw std::invalid_argument(at + ": expected {\"effect\": ID, \"params\": {…}}");
+    try {
+      out.push_back(model::effect_from_json(e.at("effect").get<std::string>(), e.at("params")));
+    } catch (const std::invalid_argument& bad) {
+      throw std::invalid_argument(at + ": " + bad.what());
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
-sim::KnobParams parse_knob_json(std::string_view text, std::string_view source) {
+KnobFile parse_knob_json(std::string_view text, std::string_view source) {
   json doc;
   try {
     doc = json::parse(text);
@@ -103,12 +124,15 @@ sim::KnobParams parse_knob_json(std::string_view text, std::string_view source) 
   const std::string model = doc.contains("model") && doc.at("model").is_string() ? doc.at("model").get<std::string>()
                             : doc.contains("model")                              ? doc.at("model").dump()
                                                                                  : "thesis6";
-  if (model == "thesis6") return from_thesis6(doc, where);
-  if (model == "render4") return from_render4(doc, where);
-  throw std::invalid_argument(where + ": model '" + model + "' is neither 'thesis6' nor 'render4'");
+  KnobFile file;
+  if (model == "thesis6") file.knob = from_thesis6(doc, where);
+  else if (model == "render4") file.knob = from_render4(doc, where);
+  else throw std::invalid_argument(where + ": model '" + model + "' is neither 'thesis6' nor 'render4'");
+  if (doc.contains("effects")) file.effects = effects_of(doc.at("effects"), where);
+  return file;
 }
 
-sim::KnobParams read_knob_file(const std::filesystem::path& path) {
+KnobFile read_knob_file(const std::filesystem::path& path) {
   std::ifstream in(path);
   if (!in) throw std::invalid_argument("cannot open knob file " + path.string());
   std::ostringstream text;

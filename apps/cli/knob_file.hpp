@@ -12,17 +12,31 @@
 // A file without "model" is thesis6. Missing parameters are zero (P_pos
 // defaults to 1); an unknown parameter is an error that lists the known
 // ones. The result's figures beside the parameters (ci95, se, detents, rmse,
-// stick.samples, …) are not parameters and are ignored.
+// stick.samples, …) are not parameters and are ignored, as is a model
+// file's "render" (hapticd's). A model file (`knoblab discrepancy
+// --model-out`, docs/discrepancy.md) adds effects under the names
+// discrepancy reports and simulate --effects takes, checked against the
+// effect table (model/effect_table.hpp, effect_json.hpp):
+//    "effects": [{"effect": "stribeck",
+//                 "params": {"static_excess_Nm": …, "stribeck_velocity_rad_s": …}}, …]
 #pragma once
 
 #include <filesystem>
 #include <string_view>
+#include <vector>
 
 #include "knoblab/sim/knob.hpp"
+#include "knoblab/model/effect_table.hpp"
+#include "knoblab/sim/library_effects.hpp"
 
 namespace knoblab::cli {
 
-sim::KnobParams parse_knob_json(std::string_view text, std::string_view source_name);
-sim::KnobParams read_knob_file(const std::filesystem::path& path);
+struct KnobFile {
+  sim::KnobParams knob;
+  std::vector<model::EffectSpec> effects;  // beyond the knob's own terms, for simulate()
+};
+
+KnobFile parse_knob_json(std::string_view text, std::string_view source_name);
+KnobFile read_knob_file(const std::filesystem::path& path);
 
 }  // namespace knoblab::cli

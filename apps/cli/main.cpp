@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "knoblab/fit/run_hooks.hpp"
+#include "knoblab/version.hpp"
 
 namespace knoblab::cli {
 
@@ -14,7 +16,8 @@ const std::vector<Command>& commands() {
       {kSimulateSpec, run_simulate}, {kImportSpec, run_import}, {kExportSpec, run_export},
       {kListSpec, run_list},         {kConvertSpec, run_convert}, {kInspectSpec, run_inspect},
       {kFitSpec, run_fit},           {kFitsSpec, run_fits},       {kFitExportSpec, run_fit_export},
-      {kDiscrepancySpec, run_discrepancy}, {kDemoSpec, run_demo}, {kCtlSpec, run_ctl},
+      {kDiscrepancySpec, run_discrepancy}, {kCompareSpec, run_compare}, {kResultsSpec, run_results},
+      {kDemoSpec, run_demo}, {kCtlSpec, run_ctl},
   };
   return all;
 }
@@ -27,7 +30,8 @@ void print_overview() {
     name.resize(14, ' ');
     std::cout << name << c.spec.summary.substr(0, c.spec.summary.find('\n')) << "\n";
   }
-  std::cout << "\n'knoblab COMMAND --help' describes one command.\n";
+  std::cout << "\n'knoblab COMMAND --help' describes one command; 'knoblab --version' says which\n"
+               "knoblab this is.\n";
 }
 }  // namespace
 
@@ -37,12 +41,16 @@ int main(int argc, char** argv) {
   using namespace knoblab::cli;
   std::vector<std::string> args(argv + 1, argv + argc);
   if (!args.empty() && args[0] == "--version") {
-    std::cout << "knoblab " << KNOBLAB_VERSION << "\n";
+    std::cout << "knoblab " << knoblab::kVersion << "\n";
     return 0;
   }
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     print_overview();
     return args.empty() ? 2 : 0;
+  }
+  if (args[0] == "--version") {
+    std::cout << "knoblab " << knoblab::kVersion << "\n";
+    return 0;
   }
   for (const auto& c : commands()) {
     if (c.spec.name != args[0]) continue;
@@ -53,10 +61,14 @@ int main(int argc, char** argv) {
         return 0;
       }
       if (parsed.version()) {
-        std::cout << "knoblab " << KNOBLAB_VERSION << "\n";
+        std::cout << "knoblab " << knoblab::kVersion << "\n";
         return 0;
       }
       return c.run(parsed);
+    } catch (const knoblab::fit::Cancelled&) {
+      // Ctrl-C or SIGTERM (cancel.hpp): nothing was written or stored.
+      std::cerr << "knoblab " << c.spec.name << ": cancelled\n";
+      return 130;
     } catch (const UsageError& e) {
       std::cerr << "knoblab " << c.spec.name << ": " << e.what() << "\n"
                 << "try 'knoblab " << c.spec.name << " --help'\n";

@@ -218,7 +218,15 @@ SimulationResult simulate(const SimulationRequest& request, store::Store* db) {
   std::optional<std::size_t> cut;
   std::uint32_t cut_faults = 0;
   double sq_err = 0.0;
+  constexpr std::int64_t kChunk = 1000;  // cycles between looks at the hooks
   for (std::int64_t i = 0; i <= cycles; ++i) {
+    if (i % kChunk == 0) {
+      r.hooks.report("simulating", static_cast<std::size_t>(i), static_cast<std::size_t>(cycles));
+      if (r.hooks.cancelled && r.hooks.cancelled()) {
+        if (writer) writer->discard();  // nothing of a cancelled capture stays
+        throw fit::Cancelled();
+      }
+    }
     capture::DaqInputs in;
     capture::DaqOutputs out;
     hapticd::LoopRecord rec;

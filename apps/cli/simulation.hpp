@@ -9,6 +9,7 @@
 #include <string>
 
 #include "knoblab/capture/capture_controller.hpp"
+#include "knoblab/fit/run_hooks.hpp"
 #include "knoblab/interchange/capture.hpp"
 #include "knoblab/sim/library_effects.hpp"
 #include "knoblab/sim/plant.hpp"
@@ -30,6 +31,10 @@ struct SimulationRequest {
   // Effects beyond the thesis model, any kind (sim/library_effects.hpp):
   // simulate() folds knob terms into `knob` and rig effects into the plant.
   std::vector<model::EffectSpec> effects;
+  // Progress ("simulating", cycles done of all) and cancellation, polled
+  // every 1000 cycles: simulate() then removes the capture it began in the
+  // store and throws fit::Cancelled.
+  fit::RunHooks hooks;
 };
 
 struct SimulationResult {
@@ -56,7 +61,8 @@ class CaptureFailed : public std::runtime_error {
 
 // Runs the capture; when `db` is given the samples go into it in committed
 // batches while the loop runs (as hapticd's writer does). Throws
-// CaptureFailed when the capture did not run to its end with the motor driven.
+// CaptureFailed when the capture did not run to its end with the motor
+// driven, fit::Cancelled when request.hooks says so.
 SimulationResult simulate(const SimulationRequest& request, store::Store* db);
 
 }  // namespace knoblab::cli

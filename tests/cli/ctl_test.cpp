@@ -26,6 +26,7 @@
 
 #include "knoblab/control/client.hpp"
 #include "knoblab/control/schema.hpp"
+#include "hapticd_process.hpp"
 #include "process.hpp"
 
 extern char** environ;
@@ -37,51 +38,6 @@ using nlohmann::json;
 using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
 
-
-// hapticd on the simulated camera at a gentle rate, serving a socket in a
-// scratch directory (and a telemetry ring when asked).
-class Hapticd {
- public:
-  explicit Hapticd(std::string telemetry_shm = {}) : telemetry_(std::move(telemetry_shm)) {
-    // This host is not realtime: a run of late cycles must not latch the
-    // overruns fault (it would send the daemon to idle mid-test).
-    std::vector<std::string> args = {KNOBLAB_HAPTICD_PATH, "--backend", "sim",    "--knob",
-                                     "moderate-detents",   "--rate",    "1000",   "--socket",
-                                     socket(),             "--db",      (dir_ / "lab.sqlite").string(),
-                                     "--max-overruns",     "1000000"};
-    if (!telemetry_.empty()) args.insert(args.end(), {"--telemetry", telemetry_});
-    pid_ = spawn(args, (dir_ / "hapticd.out").string(), (dir_ / "hapticd.err").string());
-  }
-  ~Hapticd() {
-    if (pid_ > 0) {
-      ::kill(pid_, SIGTERM);
-      wait_exit(pid_, 10s);
-    }
-    if (!telemetry_.empty()) ::shm_unlink(telemetry_.c_str());
-  }
-  Hapticd(const Hapticd&) = delete;
-  Hapticd& operator=(const Hapticd&) = delete;
-
-  // Up and answering get_state.
-  bool ready() const {
-    return pid_ > 0 && eventually([&] {
-             try {
-               control::Client c(socket());
-               return c.call("get_state").contains("mode");
-             } catch (const std::exception&) {
-               return false;
-             }
-           });
-  }
-  std::string socket() const { return (dir_ / "h.sock").string(); }
-  std::string db() const { return (dir_ / "lab.sqlite").string(); }
-  std::string log() const { return read_file(dir_ / "hapticd.out") + read_file(dir_ / "hapticd.err"); }
-
- private:
-  ScratchDir dir_;
-  std::string telemetry_;
-  pid_t pid_ = -1;
-};
 
 RunResult ctl(const std::string& socket, std::vector<std::string> args) {
   args.insert(args.begin(), {"ctl", "--socket", socket});

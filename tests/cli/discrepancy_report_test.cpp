@@ -33,9 +33,9 @@ TEST(DiscrepancyReportCli, WritesTheReportAndPrintsTheFigures) {
     EXPECT_NE(rest.find(" fit "), std::string::npos) << rest;
     EXPECT_NE(rest.find("whiteness p "), std::string::npos) << rest;
   }
-  EXPECT_NE(r.out.find("report: 11 files in " + report.string()), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("report: 21 files in " + report.string()), std::string::npos) << r.out;
   for (const char* stem : {"residual_position", "residual_velocity", "residual_time", "whiteness", "summary"})
-    for (const char* ext : {".png", ".svg"})
+    for (const char* ext : {".pdf", ".svg", ".png", ".csv"})
       EXPECT_TRUE(fs::is_regular_file(report / (std::string(stem) + ext))) << stem << ext;
   const std::string md = read_file(report / "summary.md");
   EXPECT_NE(md.find("+ periodic_torque (final)"), std::string::npos) << md;

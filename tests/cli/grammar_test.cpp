@@ -132,6 +132,26 @@ TEST_F(WithACapture, ListAndInspectPrintJsonAndCsvInSiUnits) {
   EXPECT_EQ(r.exit_code, 2);
 }
 
+TEST_F(WithACapture, FitsPrintJsonAndCsvWithTheirProvenance) {
+  ASSERT_EQ(run_knoblab({"fit", "--capture", "1", "--db", db_.string()}).exit_code, 0);
+  RunResult r = run_knoblab({"fits", "--db", db_.string(), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto fits = nlohmann::json::parse(r.out);
+  ASSERT_EQ(fits.size(), 1u) << r.out;
+  EXPECT_EQ(fits[0]["capture_id"], 1);
+  EXPECT_EQ(fits[0]["model"], "thesis6");
+  EXPECT_LT(fits[0]["rmse_Nm"].get<double>(), 0.01);  // N·m, not mN·m
+  EXPECT_EQ(fits[0]["input_sha256"].get<std::string>().size(), 64u);
+  EXPECT_EQ(fits[0]["tool_version"], run_knoblab({"--version"}).out.substr(8, run_knoblab({"--version"}).out.size() - 9));
+  r = run_knoblab({"fits", "--db", db_.string(), "--csv"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("id,capture_id,model,created_at,rmse_Nm,fit_percent,detents_per_rev,files,tool_version,"
+                        "input_sha256\n1,1,thesis6,",
+                        0),
+            0u)
+      << r.out;
+}
+
 TEST(Grammar, CsvListingsQuoteTextThatHoldsCommasAndQuotes) {
   ScratchDir dir;
   const auto csv = dir / "k.csv";

@@ -225,6 +225,12 @@ TEST(Schema, GroupRules) {
   EXPECT_EQ(refusal(Command::load_model, "{" + model + R"(,"dv":0.1})"), "D_neg");
   EXPECT_EQ(refusal(Command::load_model, "{" + model + R"(,"dv":0.1,"D_neg":0.01,"D_pos":0.01})"), std::nullopt);
   EXPECT_EQ(refusal(Command::load_model, "{" + model + R"(,"B_vm":0.1})"), "K_vm");
+  EXPECT_EQ(refusal(Command::load_model, "{" + model + R"(,"effects":{"spring":{"centre_rad":0.1}}})"), "effects.spring.stiffness_Nm_per_rad")
+      << "a spring needs a stiffness";
+  EXPECT_EQ(refusal(Command::load_model, "{" + model + R"(,"effects":{"backlash":{"width":0.01}}})"),
+            "effects.backlash")
+      << "the renderer renders no play";
+  EXPECT_EQ(refusal(Command::set_params, R"({"effects":{"stribeck":{"static_excess_Nm":0.002,"stribeck_velocity_rad_s":0.1}}})"), std::nullopt);
   EXPECT_EQ(refusal(Command::set_params, "{}"), "M_acc") << "set_params needs at least one key";
   EXPECT_EQ(refusal(Command::set_params, R"({"D_pos":0.01})"), std::nullopt) << "partial updates need no group";
   EXPECT_EQ(refusal(Command::start_capture, R"({"seconds":1,"knob":"k"})"), "swept_sine");

@@ -1,11 +1,12 @@
 // write_discrepancy_report(): the files, their size, that the after-residual
-// is drawn narrower than the before where an effect was found, summary.md's
+// gets its own, narrower y scale where an effect was found, summary.md's
 // table and sentences, and its failures. On the validation data with a
 // concealed periodic torque (as discover_test's) and on the clean data.
 //
 // KNOBLAB_REPORT_EXAMPLE=dir keeps the example report in `dir` to look at.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -17,6 +18,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include <unistd.h>
 
@@ -77,11 +79,20 @@ class DiscrepancyReport : public ::testing::Test {
   fs::path dir_;
 };
 
-const std::set<std::string> kFiles = {
-    "residual_position.png", "residual_position.svg", "residual_velocity.png",
-    "residual_velocity.svg", "residual_time.png",     "residual_time.svg",
-    "whiteness.png",         "whiteness.svg",         "summary.png",
-    "summary.svg",           "summary.md"};
+std::set<std::string> all_files() {
+  std::set<std::string> files = {"summary.md"};
+  for (const char* stem : {"residual_position", "residual_velocity", "residual_time", "whiteness", "summary"})
+    for (const char* ext : {".pdf", ".svg", ".png", ".csv"}) files.insert(std::string(stem) + ext);
+  return files;
+}
+
+// PNGs only, at 100 dpi: enough for the tests that look at pixels.
+ReportOptions png_only() {
+  ReportOptions opt;
+  opt.figure.formats = {fit::plot::Format::Png};
+  opt.figure.dpi = 100;
+  return opt;
+}
 
 std::string read_bytes(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
@@ -123,25 +134,28 @@ TEST_F(DiscrepancyReport, WritesEveryFileAtTheRequestedSize) {
   ASSERT_FALSE(c.r.findings.empty()) << to_json(c.r);
   ReportOptions opt;
   opt.title = "validation #4, cogging";
-  opt.width_px = 1000;
-  opt.height_px = 700;
+  opt.figure.width_mm = 100.0;
+  opt.figure.height_mm = 70.0;
+  opt.figure.dpi = 254;
   const auto files = write_discrepancy_report(dir_ / "nested", c.data, c.r, opt);
   std::set<std::string> names;
   for (const fs::path& f : files) {
     names.insert(f.filename().string());
     ASSERT_TRUE(fs::is_regular_file(f)) << f;
     const std::string bytes = read_bytes(f);
-    EXPECT_GT(bytes.size(), 500u) << f;
+    EXPECT_GT(bytes.size(), f.filename() == "summary.csv" ? 100u : 500u) << f;  // summary.csv: its table
     if (f.extension() == ".png") {
       const Image im = decode_png(f);
       EXPECT_EQ(im.width, 1000u) << f;
       EXPECT_EQ(im.height, 700u) << f;
     } else if (f.extension() == ".svg") {
       EXPECT_NE(bytes.find("<svg"), std::string::npos) << f;
-      EXPECT_NE(bytes.find("width=\"1000"), std::string::npos) << f;
+      EXPECT_NE(bytes.find("width=\"100.00mm\""), std::string::npos) << f;
+    } else if (f.extension() == ".pdf") {
+      EXPECT_TRUE(bytes.starts_with("%PDF-")) << f;
     }
   }
-  EXPECT_EQ(names, kFiles);
+  EXPECT_EQ(names, all_files());
   if (const char* keep = std::getenv("KNOBLAB_REPORT_EXAMPLE")) {
     fs::create_directories(keep);
     for (const fs::path& f : files)
@@ -149,29 +163,65 @@ TEST_F(DiscrepancyReport, WritesEveryFileAtTheRequestedSize) {
   }
 }
 
-TEST_F(DiscrepancyReport, AfterResidualIsDrawnNarrowerWhereTheEffectWasFound) {
+// The panel of the named figure.
+const fit::plot::Panel& panel(const std::vector<fit::plot::NamedFigure>& figures, std::string_view stem,
+                              std::string_view name) {
+  for (const auto& f : figures)
+    for (const auto& p : f.figure.panels)
+      if (f.stem == stem && p.name == name) return p;
+  throw std::runtime_error("no panel " + std::string(stem) + "/" + std::string(name));
+}
+
+TEST_F(DiscrepancyReport, AfterResidualHasItsOwnNarrowerScaleWhereTheEffectWasFound) {
   // The cogging is concealed (RMS 0.57 beside noise of 1.15 N·m): the
-  // held-out RMS falls by about 10 %, and so does the cloud's drawn height.
-  const Case& c = with_cogging();
-  write_discrepancy_report(dir_, c.data, c.r);
-  for (const char* name : {"residual_position.png", "residual_time.png"}) {
-    const Image im = decode_png(dir_ / name);
-    const double before = cloud_height(im, 0, im.height / 2);
-    const double after = cloud_height(im, im.height / 2, im.height);
-    EXPECT_GT(after, 0.0) << name;
-    EXPECT_LT(after, 0.93 * before) << name << ": before " << before << " px, after " << after;
+  // held-out RMS falls by about 10 %, and the after panel's scale with it.
+  const auto found = discrepancy_figures(with_cogging().data, with_cogging().r);
+  for (const char* stem : {"residual_position", "residual_velocity", "residual_time"}) {
+    const auto& before = panel(found, stem, "before");
+    const auto& after = panel(found, stem, "after");
+    EXPECT_LT(after.y_hi, 0.95 * before.y_hi) << stem;
+    EXPECT_DOUBLE_EQ(after.y_lo, -after.y_hi);
+    // Each scale holds nearly all of its own residual.
+    std::size_t inside = 0, all = 0;
+    for (const auto& s : after.series)
+      if (s.mark == fit::plot::Mark::Dots)
+        for (const double y : s.y) inside += std::abs(y) <= after.y_hi ? 1 : 0, ++all;
+    EXPECT_GT(inside, 0.99 * static_cast<double>(all)) << stem;
   }
-  // Without a finding both panels are the same residual.
-  write_discrepancy_report(dir_ / "clean", clean().data, clean().r);
-  const Image im = decode_png(dir_ / "clean" / "residual_position.png");
-  const double before = cloud_height(im, 0, im.height / 2);
-  const double after = cloud_height(im, im.height / 2, im.height);
-  EXPECT_NEAR(after, before, 0.01 * before);
+  // Without a finding both panels are the same residual at the same scale.
+  const auto none = discrepancy_figures(clean().data, clean().r);
+  EXPECT_DOUBLE_EQ(panel(none, "residual_time", "after").y_hi, panel(none, "residual_time", "before").y_hi);
+}
+
+TEST_F(DiscrepancyReport, HeldOutRowsAreDrawnInBlueOverTheTrainingRows) {
+  const Case& c = with_cogging();
+  write_discrepancy_report(dir_, c.data, c.r, png_only());
+  const Image im = decode_png(dir_ / "residual_position.png");
+  EXPECT_GT(cloud_height(im, 0, im.height / 2), 0.0);
+  EXPECT_GT(cloud_height(im, im.height / 2, im.height), 0.0);
+  // Drawn order: training rows first, held-out rows over them.
+  const auto figures = discrepancy_figures(c.data, c.r);
+  const auto& before = panel(figures, "residual_position", "before");
+  EXPECT_EQ(before.series[0].name, "training_rows");
+  EXPECT_EQ(before.series[1].name, "heldout_rows");
+}
+
+TEST_F(DiscrepancyReport, ResidualCsvsHoldEveryPlottedRowInDegrees) {
+  const Case& c = with_cogging();
+  write_discrepancy_report(dir_, c.data, c.r, png_only());
+  const std::string csv = read_bytes(dir_ / "residual_position.csv");
+  EXPECT_TRUE(csv.starts_with("panel,series,position_deg,residual_mNm\n")) << csv.substr(0, 80);
+  std::size_t rows = 0;
+  for (const char ch : csv) rows += ch == '\n' ? 1 : 0;
+  // Header; training and held-out rows in each panel; the added torque above; two zero-line points each.
+  const std::size_t n = std::min(c.r.trace.size(), ReportOptions{}.max_points);
+  EXPECT_EQ(rows, 1 + 2 * n + n + 4);
+  EXPECT_NE(read_bytes(dir_ / "summary.csv").find("model,RMS mN·m,held-out RMS mN·m"), std::string::npos);
 }
 
 TEST_F(DiscrepancyReport, SummaryHasTheFindingsSentenceAndTheFigures) {
   const Case& c = with_cogging();
-  write_discrepancy_report(dir_, c.data, c.r);
+  write_discrepancy_report(dir_, c.data, c.r, png_only());
   const std::string md = read_bytes(dir_ / "summary.md");
   EXPECT_NE(md.find(c.r.findings.front().explanation), std::string::npos) << md;
   EXPECT_NE(md.find("periodic_torque"), std::string::npos) << md;
@@ -187,7 +237,7 @@ TEST_F(DiscrepancyReport, SummaryHasTheFindingsSentenceAndTheFigures) {
 
 TEST_F(DiscrepancyReport, SummarySaysNothingIsMissingWithoutAFinding) {
   ASSERT_TRUE(clean().r.findings.empty()) << to_json(clean().r);
-  write_discrepancy_report(dir_, clean().data, clean().r);
+  write_discrepancy_report(dir_, clean().data, clean().r, png_only());
   const std::string md = read_bytes(dir_ / "summary.md");
   EXPECT_NE(md.find("Nothing is missing"), std::string::npos) << md;
   EXPECT_NE(md.find(fmt("%.4g", clean().r.base.heldout_rmse_Nm * 1e3)), std::string::npos) << md;
@@ -198,7 +248,7 @@ TEST_F(DiscrepancyReport, SummaryShowsTentativeTermsAsNotReported) {
   const DiscrepancyResult r = discover(with_cogging().data);
   ASSERT_TRUE(r.findings.empty());
   ASSERT_FALSE(r.tentative.empty()) << to_json(r);
-  write_discrepancy_report(dir_, with_cogging().data, r);
+  write_discrepancy_report(dir_, with_cogging().data, r, png_only());
   const std::string md = read_bytes(dir_ / "summary.md");
   EXPECT_NE(md.find("Nothing is reported"), std::string::npos) << md;
   EXPECT_NE(md.find(r.tentative.front().explanation), std::string::npos) << md;
@@ -222,7 +272,9 @@ TEST_F(DiscrepancyReport, UnwritableDirectoryThrowsWithThePath) {
   const fs::path blocker = dir_ / "out" / "whiteness.svg";
   fs::create_directories(blocker);
   try {
-    write_discrepancy_report(dir_ / "out", clean().data, clean().r);
+    ReportOptions svg = png_only();
+    svg.figure.formats = {fit::plot::Format::Svg};
+    write_discrepancy_report(dir_ / "out", clean().data, clean().r, svg);
     FAIL() << "no exception";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find(blocker.string()), std::string::npos) << e.what();
@@ -235,7 +287,7 @@ TEST_F(DiscrepancyReport, BadInputIsRejected) {
   EXPECT_THROW(write_discrepancy_report(dir_, clean().data, r), std::invalid_argument);
   EXPECT_THROW(write_discrepancy_report(dir_, clean().data, DiscrepancyResult{}), std::invalid_argument);
   ReportOptions opt;
-  opt.width_px = 50;
+  opt.figure.width_mm = 5.0;
   EXPECT_THROW(write_discrepancy_report(dir_, clean().data, clean().r, opt), std::invalid_argument);
   EXPECT_FALSE(fs::exists(dir_));
 }

@@ -83,8 +83,9 @@ def as_run_here(command, scratch, build):
     command = re.sub(r"^\./run shell\s+", "", command)
     if command.startswith("./run"):
         raise ValueError("cannot run '%s' inside the test; mark the block 'doc-test: skip REASON'" % command)
-    command = re.sub(r"(?<![\w/.])build/", str(build) + "/", command)
-    return command.replace("/tmp/", str(scratch) + "/")
+    # /tmp first: the build directory itself may lie under /tmp.
+    command = command.replace("/tmp/", str(scratch) + "/")
+    return re.sub(r"(?<![\w/.])build/", str(build) + "/", command)
 
 
 def is_daemon(command):

@@ -1,6 +1,6 @@
-// write_report(): the eight files (PNG + SVG of four figures), their size and
-// content, and its failures. The fit is made by hand from a known Eq. 6 model,
-// so the test does not depend on the fitter.
+// write_report(): the sixteen files (PDF, SVG, PNG and CSV of four figures),
+// what the figures show, and its failures. The fit is made by hand from a
+// known Eq. 6 model, so the test does not depend on the fitter.
 //
 // KNOBLAB_REPORT_EXAMPLE=dir keeps one example report in `dir` for a person
 // to look at.
@@ -23,7 +23,9 @@
 #include <thread>
 #include <vector>
 
+#include "figure_checks.hpp"
 #include "png_image.hpp"
+#include "knoblab/fit/plot/legend.hpp"
 #include "knoblab/fit/report.hpp"
 
 namespace knoblab::fit {
@@ -107,26 +109,26 @@ class ReportTest : public ::testing::Test {
 };
 
 const std::vector<std::string> kFiles = {
-    "torque_position.png", "torque_position.svg", "torque_velocity.png", "torque_velocity.svg",
-    "torque_time.png",     "torque_time.svg",     "ci_torque.png",       "ci_torque.svg"};
+    "torque_position.pdf", "torque_position.svg", "torque_position.png", "torque_position.csv",
+    "torque_velocity.pdf", "torque_velocity.svg", "torque_velocity.png", "torque_velocity.csv",
+    "torque_time.pdf",     "torque_time.svg",     "torque_time.png",     "torque_time.csv",
+    "ci_torque.pdf",       "ci_torque.svg",       "ci_torque.png",       "ci_torque.csv"};
 
-std::string read_bytes(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+// PNGs only, at 200 dpi (a cloud's 0.4 mm dots 3 px wide): what the tests
+// that look at pixels need.
+ReportOptions png_only(std::size_t max_points = 20000) {
+  ReportOptions opt;
+  opt.figure.formats = {plot::Format::Png};
+  opt.figure.dpi = 200;
+  opt.max_points = max_points;
+  return opt;
 }
 
-std::uint32_t be32(const std::string& s, std::size_t at) {
-  std::uint32_t v = 0;
-  for (std::size_t k = 0; k < 4; ++k) v = (v << 8) | static_cast<unsigned char>(s[at + k]);
-  return v;
-}
-
-// Width and height from the IHDR chunk, which must follow the signature.
+using knoblab::testing::file_bytes;
+std::string read_bytes(const fs::path& file) { return file_bytes(file); }
 std::pair<std::uint32_t, std::uint32_t> png_size(const std::string& png) {
-  const std::string signature = "\x89PNG\r\n\x1a\n";
-  if (png.size() < 33 || png.compare(0, 8, signature) != 0 || png.compare(12, 4, "IHDR") != 0)
-    throw std::runtime_error("not a PNG");
-  return {be32(png, 16), be32(png, 20)};
+  const auto info = knoblab::testing::png_info(png);
+  return {info.width, info.height};
 }
 
 using knoblab::testing::Image;
@@ -144,7 +146,7 @@ std::size_t count(const Image& im, bool (*pred)(const std::array<int, 3>&)) {
   return n;
 }
 
-TEST_F(ReportTest, WritesTheEightFilesAndCreatesTheDirectory) {
+TEST_F(ReportTest, WritesTheSixteenFilesAndCreatesTheDirectory) {
   const Case c = make_case();
   const fs::path dir = dir_ / "nested" / "report";
   ReportOptions opt;
@@ -167,36 +169,37 @@ TEST_F(ReportTest, WritesTheEightFilesAndCreatesTheDirectory) {
   }
 }
 
-TEST_F(ReportTest, PngsHaveTheRequestedSizeAndSvgsAreSvg) {
+TEST_F(ReportTest, FilesHaveTheRequestedSizeInEveryFormat) {
   const Case c = make_case();
   ReportOptions opt;
-  opt.width_px = 1000;
-  opt.height_px = 640;
+  opt.figure.width_mm = 100.0;
+  opt.figure.height_mm = 64.0;
+  opt.figure.dpi = 254;
   for (const fs::path& f : write_report(c.r, c.d, c.p, dir_, opt)) {
     const std::string bytes = read_bytes(f);
     if (f.extension() == ".png") {
       const auto [w, h] = png_size(bytes);
       EXPECT_EQ(w, 1000u) << f;
       EXPECT_EQ(h, 640u) << f;
-    } else {
-      EXPECT_NE(bytes.find("<svg"), std::string::npos) << f;
-      EXPECT_NE(bytes.find("</svg>"), std::string::npos) << f;
-      EXPECT_NE(bytes.find("width=\"1000"), std::string::npos) << f;
-      EXPECT_NE(bytes.find("height=\"640"), std::string::npos) << f;
+    } else if (f.extension() == ".svg") {
+      const auto svg = knoblab::testing::parse_svg(bytes);
+      EXPECT_EQ(svg.root_attributes.at("width"), "100.00mm") << f;
+      EXPECT_EQ(svg.root_attributes.at("height"), "64.00mm") << f;
+    } else if (f.extension() == ".pdf") {
+      EXPECT_TRUE(knoblab::testing::pdf_contains(bytes, "/MediaBox [ 0 0 283 181 ]")) << f;
     }
   }
 }
 
 TEST_F(ReportTest, PlotsAreWhiteWithBlackAxesAndAGrayCloud) {
   const Case c = make_case();
-  write_report(c.r, c.d, c.p, dir_);
+  write_report(c.r, c.d, c.p, dir_, png_only());
   for (const char* name : {"torque_position.png", "torque_velocity.png", "torque_time.png"}) {
     const Image im = decode_png(dir_ / name);
-    ASSERT_EQ(im.width, 1200u);
-    ASSERT_EQ(im.height, 900u);
+    ASSERT_EQ(im.width, 1260u);  // 160 mm at 200 dpi
     // White background.
-    for (const auto& [x, y] : {std::pair{0u, 0u}, std::pair{1199u, 0u}, std::pair{0u, 899u},
-                               std::pair{1199u, 899u}})
+    const std::uint32_t r = im.width - 1, b = im.height - 1;
+    for (const auto& [x, y] : {std::pair{0u, 0u}, std::pair{r, 0u}, std::pair{0u, b}, std::pair{r, b}})
       EXPECT_EQ(im.at(x, y), (std::array<int, 3>{255, 255, 255})) << name;
     // Stacked plot boxes (two or three): some column is dark over about half
     // the height or more (the left frames of the panels).
@@ -213,13 +216,19 @@ TEST_F(ReportTest, PlotsAreWhiteWithBlackAxesAndAGrayCloud) {
 }
 
 TEST_F(ReportTest, RawCloudsAreThinnedToMaxPoints) {
-  const Case c = make_case();
-  ReportOptions few;
-  few.max_points = 100;
-  write_report(c.r, c.d, c.p, dir_ / "few", few);
-  write_report(c.r, c.d, c.p, dir_ / "all");
-  const std::size_t gray_few = count(decode_png(dir_ / "few" / "torque_time.png"), cloud_gray);
-  const std::size_t gray_all = count(decode_png(dir_ / "all" / "torque_time.png"), cloud_gray);
+  const Case c = make_case();  // 5000 samples
+  write_report(c.r, c.d, c.p, dir_ / "few", png_only(100));
+  write_report(c.r, c.d, c.p, dir_ / "all", png_only());
+  const auto rows = [&](const char* dir) {
+    std::size_t n = 0;
+    for (const auto& row : knoblab::testing::csv_rows(file_bytes(dir_ / dir / "torque_time.csv")))
+      n += row.size() > 1 && row[1] == "raw_torque" ? 1 : 0;
+    return n;
+  };
+  EXPECT_EQ(rows("few"), 100u);
+  EXPECT_EQ(rows("all"), 5000u);
+  const std::size_t gray_few = count(decode_png(dir_ / "few" / "torque_position.png"), cloud_gray);
+  const std::size_t gray_all = count(decode_png(dir_ / "all" / "torque_position.png"), cloud_gray);
   EXPECT_LT(gray_few * 5, gray_all);
 }
 
@@ -227,9 +236,9 @@ TEST_F(ReportTest, OutputFollowsTheData) {
   // Same input, same bytes (no time stamps): so a difference below is the data.
   const Case a = make_case(0.5e-3, 1);
   const Case b = make_case(0.5e-3, 2);
-  write_report(a.r, a.d, a.p, dir_ / "a1");
-  write_report(a.r, a.d, a.p, dir_ / "a2");
-  write_report(b.r, b.d, b.p, dir_ / "b");
+  write_report(a.r, a.d, a.p, dir_ / "a1", png_only());
+  write_report(a.r, a.d, a.p, dir_ / "a2", png_only());
+  write_report(b.r, b.d, b.p, dir_ / "b", png_only());
   for (const char* name : {"torque_position.png", "torque_velocity.png", "torque_time.png"}) {
     const std::string a1 = read_bytes(dir_ / "a1" / name);
     EXPECT_EQ(a1, read_bytes(dir_ / "a2" / name)) << name;
@@ -250,11 +259,11 @@ TEST_F(ReportTest, BandsAreShadedWhereTheyCanBeSeen) {
   // The fit's band is 0.02–0.05 mN·m against a torque of tens: on the torque
   // panels thinner than a line. The residual panels show both bands shaded.
   const Case c = make_case();
-  write_report(c.r, c.d, c.p, dir_ / "clean");
+  write_report(c.r, c.d, c.p, dir_ / "clean", png_only());
   // Transients the fit left out (3% of samples, 40 mN·m) must not squash them.
   Case spiky = make_case();
   for (std::size_t i = 0; i < spiky.d.size(); i += 33) spiky.d.torque[i] += 40e-3;
-  write_report(spiky.r, spiky.d, spiky.p, dir_ / "spiky");
+  write_report(spiky.r, spiky.d, spiky.p, dir_ / "spiky", png_only());
   for (const char* name : {"torque_position.png", "torque_velocity.png", "torque_time.png"}) {
     const Image clean = decode_png(dir_ / "clean" / name);
     const Image with_spikes = decode_png(dir_ / "spiky" / name);
@@ -267,8 +276,8 @@ TEST_F(ReportTest, BandsAreShadedWhereTheyCanBeSeen) {
 
 TEST_F(ReportTest, KnobWithoutDetentsStillGetsPositionPlots) {
   const Case c = make_case(0.5e-3, 1, /*detents=*/false);
-  const auto files = write_report(c.r, c.d, c.p, dir_);
-  ASSERT_EQ(files.size(), kFiles.size());
+  const auto files = write_report(c.r, c.d, c.p, dir_, png_only());
+  ASSERT_EQ(files.size(), 8u);
   const Image im = decode_png(dir_ / "torque_position.png");
   EXPECT_GT(count(im, cloud_gray), im.width * im.height / 100);
 }
@@ -276,7 +285,7 @@ TEST_F(ReportTest, KnobWithoutDetentsStillGetsPositionPlots) {
 TEST_F(ReportTest, WorksWithoutAnObservationBand) {
   Case c = make_case();
   c.p.observation_half.clear();
-  EXPECT_EQ(write_report(c.r, c.d, c.p, dir_).size(), kFiles.size());
+  EXPECT_EQ(write_report(c.r, c.d, c.p, dir_, png_only()).size(), 8u);
 }
 
 TEST_F(ReportTest, NonFiniteBandValuesAreLeftOut) {
@@ -286,7 +295,7 @@ TEST_F(ReportTest, NonFiniteBandValuesAreLeftOut) {
     c.p.curve_half[i] = std::numeric_limits<double>::quiet_NaN();
   c.p.observation_half.assign(c.p.observation_half.size(),
                               std::numeric_limits<double>::infinity());
-  ASSERT_EQ(write_report(c.r, c.d, c.p, dir_).size(), kFiles.size());
+  ASSERT_EQ(write_report(c.r, c.d, c.p, dir_, png_only()).size(), 8u);
   const Image im = decode_png(dir_ / "torque_position.png");
   EXPECT_GT(count(im, cloud_gray), im.width * im.height / 100);
 }
@@ -297,14 +306,14 @@ TEST_F(ReportTest, ConcurrentCallsAreSerialized) {
   std::vector<std::thread> threads;
   for (std::size_t k = 0; k < written.size(); ++k) {
     threads.emplace_back([&, k] {
-      written[k] = write_report(c.r, c.d, c.p, dir_ / std::to_string(k)).size();
+      written[k] = write_report(c.r, c.d, c.p, dir_ / std::to_string(k), png_only()).size();
     });
   }
   for (auto& t : threads) t.join();
   for (std::size_t k = 0; k < written.size(); ++k) {
-    EXPECT_EQ(written[k], kFiles.size());
+    EXPECT_EQ(written[k], 8u);  // a PNG and a CSV of each figure
     const std::string png = read_bytes(dir_ / std::to_string(k) / "torque_position.png");
-    EXPECT_EQ(png_size(png).first, 1200u);
+    EXPECT_EQ(png_size(png).first, 1260u);
   }
 }
 
@@ -327,8 +336,10 @@ TEST_F(ReportTest, UnwritableFileThrowsWithThePath) {
   const Case c = make_case(0.5e-3, 1, true, 500);
   const fs::path blocker = dir_ / "torque_velocity.svg";
   fs::create_directories(blocker);
+  ReportOptions opt = png_only();
+  opt.figure.formats = {plot::Format::Svg, plot::Format::Png};
   try {
-    write_report(c.r, c.d, c.p, dir_);
+    write_report(c.r, c.d, c.p, dir_, opt);
     FAIL() << "no exception";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find(blocker.string()), std::string::npos) << e.what();
@@ -336,7 +347,7 @@ TEST_F(ReportTest, UnwritableFileThrowsWithThePath) {
   // The files before it were written, and PLplot still works afterwards.
   EXPECT_TRUE(fs::is_regular_file(dir_ / "torque_position.png"));
   fs::remove_all(blocker);
-  EXPECT_EQ(write_report(c.r, c.d, c.p, dir_).size(), kFiles.size());
+  EXPECT_EQ(write_report(c.r, c.d, c.p, dir_, opt).size(), 12u);
 }
 
 TEST_F(ReportTest, MismatchedSizesAreRejected) {
@@ -371,10 +382,79 @@ TEST_F(ReportTest, MismatchedSizesAreRejected) {
   opt.max_points = 0;
   EXPECT_THROW(write_report(good.r, good.d, good.p, dir_, opt), std::invalid_argument);
   opt = {};
-  opt.width_px = 0;
+  opt.figure.width_mm = 0.0;
+  EXPECT_THROW(write_report(good.r, good.d, good.p, dir_, opt), std::invalid_argument);
+  opt = {};
+  opt.figure.formats.clear();
   EXPECT_THROW(write_report(good.r, good.d, good.p, dir_, opt), std::invalid_argument);
   // Nothing was written for rejected input.
   EXPECT_FALSE(fs::exists(dir_));
+}
+
+
+// The rows of a report CSV for one panel and series.
+std::vector<std::vector<std::string>> csv_series(const fs::path& csv, const std::string& panel,
+                                                 const std::string& series) {
+  std::vector<std::vector<std::string>> out;
+  for (const auto& row : knoblab::testing::csv_rows(file_bytes(csv)))
+    if (row.size() > 1 && row[0] == panel && row[1] == series) out.push_back(row);
+  return out;
+}
+
+TEST_F(ReportTest, EachFiguresCsvHoldsThePlottedPointsInDegreesAndMilliNewtonMetres) {
+  const Case c = make_case();  // 5000 samples, θ ±2 rad
+  write_report(c.r, c.d, c.p, dir_, png_only(700));
+  const auto header = knoblab::testing::csv_rows(file_bytes(dir_ / "torque_position.csv")).front();
+  EXPECT_EQ(header, (std::vector<std::string>{"panel", "series", "position_deg", "torque_mNm", "torque_lower_mNm"}));
+  EXPECT_EQ(knoblab::testing::csv_rows(file_bytes(dir_ / "torque_velocity.csv")).front()[2], "velocity_deg_per_s");
+  EXPECT_EQ(knoblab::testing::csv_rows(file_bytes(dir_ / "torque_time.csv")).front()[2], "time_s");
+  // The raw cloud, thinned to max_points, in degrees and mN·m.
+  const auto raw = csv_series(dir_ / "torque_position.csv", "total", "raw_torque");
+  ASSERT_EQ(raw.size(), 700u);
+  double most_deg = 0.0, most_mNm = 0.0;
+  for (const auto& row : raw) {
+    most_deg = std::max(most_deg, std::abs(std::stod(row[2])));
+    most_mNm = std::max(most_mNm, std::abs(std::stod(row[3])));
+  }
+  EXPECT_NEAR(most_deg, 2.0 * 180.0 / std::numbers::pi, 1.0);
+  EXPECT_GT(most_mNm, 5.0);  // the detents alone are 5 mN·m
+  // The first raw row is the first sample.
+  EXPECT_NEAR(std::stod(raw.front()[3]), 1e3 * c.d.torque[0], 1e-6);
+  EXPECT_EQ(csv_series(dir_ / "torque_time.csv", "residual", "residual").size(), 700u);
+  // The stick band's limits at ±Δv in deg/s, where the velocity figure draws them.
+  const auto limits = csv_series(dir_ / "torque_velocity.csv", "velocity_part", "stick_band_limit");
+  ASSERT_EQ(limits.size(), 2u);
+  EXPECT_NEAR(std::stod(limits[1][2]), 0.3 * 180.0 / std::numbers::pi, 1e-6);
+}
+
+TEST_F(ReportTest, LegendsListTheObservationBandOnlyWhenThereIsOne) {
+  Case c = make_case(0.5e-3, 1, true, 1000);
+  const auto has_obs = [](const std::vector<plot::NamedFigure>& figures) {
+    std::size_t panels = 0;
+    for (const auto& f : figures)
+      for (const auto& p : f.figure.panels)
+        for (const auto& e : plot::legend_entries(p)) panels += e.label == "95% observation band" ? 1 : 0;
+    return panels;
+  };
+  EXPECT_EQ(has_obs(report_figures(c.r, c.d, c.p)), 5u);  // two part panels, three residual panels
+  c.p.observation_half.clear();
+  EXPECT_EQ(has_obs(report_figures(c.r, c.d, c.p)), 0u);
+}
+
+TEST_F(ReportTest, RawDataIsDrawnFirstUnderTheModelWithOnlyBandsBelowIt) {
+  const Case c = make_case(0.5e-3, 1, true, 1000);
+  for (const auto& f : report_figures(c.r, c.d, c.p)) {
+    if (f.stem == "ci_torque") continue;
+    for (const auto& p : f.figure.panels) {
+      std::size_t k = 0;
+      while (k < p.series.size() && p.series[k].mark == plot::Mark::Fill) ++k;
+      ASSERT_LT(k, p.series.size());
+      const auto& first = p.series[k];
+      EXPECT_TRUE(first.name.starts_with("raw") || first.name == "residual") << f.stem << "/" << p.name;
+      EXPECT_EQ(first.mark, plot::Mark::Dots);
+      EXPECT_EQ(first.color.r, plot::palette::kRaw.r);  // light grey
+    }
+  }
 }
 
 }  // namespace

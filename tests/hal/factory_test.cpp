@@ -1,5 +1,7 @@
 #include "knoblab/hal/factory.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include <gmock/gmock.h>
@@ -57,6 +59,28 @@ TEST(MakeDaq, SimErrorsNameTheKey) {
                 make_daq(json(R"({"backend": "sim", "knob": "subtle-detents", "rate_hz": 1000, "sede": 1})"));
               }),
               HasSubstr("daq.sede: unknown key"));
+}
+
+TEST(MakeDaq, ASimHandTurnsTheKnobAlongItsPathWithTheMotorOff) {
+  auto daq = make_daq(json(R"({"backend": "sim", "knob": "moderate-detents", "rate_hz": 1000,
+      "hand": {"amplitude_rad": 0.5, "frequency_hz": 0.5}})"));
+  auto* sim = dynamic_cast<capture::SimDaq*>(daq.get());
+  ASSERT_NE(sim, nullptr);
+  capture::DaqInputs in;
+  double worst = 0.0, furthest = 0.0;
+  for (int i = 0; i < 2000; ++i) {  // one period
+    EXPECT_EQ(daq->read(in), capture::IoStatus::ok);
+    const double t = sim->plant().state().t, theta = sim->plant().state().knob_angle;
+    worst = std::max(worst, std::abs(theta - 0.5 * std::sin(M_PI * t)));
+    furthest = std::max(furthest, std::abs(theta));
+  }
+  EXPECT_GT(furthest, 0.45);
+  // Behind the path by what the knob's friction and detents (≈ 30 mN·m) bend the grip.
+  EXPECT_LT(worst, 0.05);
+  EXPECT_THAT(error_of<ConfigError>([] {
+                make_daq(json(R"({"backend": "sim", "knob": "moderate-detents", "hand": {"amplitude": 1}})"));
+              }),
+              HasSubstr("daq.hand.amplitude: unknown key"));
 }
 
 TEST(MakeDaq, BackendMustBeNamedAndKnown) {

@@ -106,6 +106,49 @@ TEST(RenderController, StickBandHoldsUpToTheStaticLimit) {
   EXPECT_NEAR(b.torque_of(b.run(still, 200, 400, -0.5)), -0.02, 1e-4);
 }
 
+TEST(RenderController, EffectsAreRenderedThroughTheLibraryTerms) {
+  Bench b;
+  RenderParams p;
+  p.B_vel = 0.002;
+  p.effects.gravity = {0.02, 0.5};
+  p.effects.stribeck = {0.004, 0.5};
+  b.rc.set_params(p, true);
+  auto path = [](double t) { return 0.4 + 0.2 * t; };  // 0.2 rad/s: Stribeck near its full excess
+  const double v = b.run(path, 3000);
+  const double theta = path(2999 * kDt), omega = 0.2;
+  const double expected = 0.002 * omega + 0.02 * std::sin(theta + 0.5) + 0.004 * std::exp(-(omega / 0.5) * (omega / 0.5));
+  EXPECT_NEAR(b.torque_of(v), expected, 2e-4);
+  // Without them the command is the bare Eq. 14, far from it.
+  RenderParams bare;
+  bare.B_vel = 0.002;
+  b.rc.set_params(bare, true);
+  EXPECT_NEAR(b.torque_of(b.run(path, 1, 3000)), 0.002 * omega, 2e-4);
+}
+
+TEST(RenderController, ANewEffectSetFadesTheOldOutAndItselfInWithoutAStep) {
+  Bench b;
+  std::vector<double> cmds;
+  auto still = [](double) { return 0.131; };
+  RenderParams p;
+  p.effects.offset.tau0 = 0.03;
+  b.rc.set_params(p, true);
+  b.run(still, 100, 0, 0.0, &cmds);
+  p.effects.offset.tau0 = 0.0;
+  p.effects.gravity = {0.04, 0.0};
+  b.rc.set_params(p);  // faded
+  b.run(still, 1000, 100, 0.0, &cmds);
+  double biggest_step = 0;
+  for (std::size_t i = 1; i < cmds.size(); ++i) biggest_step = std::max(biggest_step, std::abs(cmds[i] - cmds[i - 1]));
+  EXPECT_NEAR(b.torque_of(cmds[99]), 0.03, 1e-6);                          // the old set, whole
+  EXPECT_NEAR(b.torque_of(cmds.back()), 0.04 * std::sin(0.131), 1e-6);      // the new one, whole
+  EXPECT_LT(std::abs(b.torque_of(biggest_step)), 0.03 / 100.0);            // ≈ 250 steps each way, no jump
+  // Base parameters alone (a slider drag) leave the effects as they are.
+  RenderParams drag = p;
+  drag.B_vel = 0.001;
+  b.rc.set_params(drag);
+  EXPECT_NEAR(b.torque_of(b.run(still, 1, 1100)), 0.04 * std::sin(0.131), 1e-6);
+}
+
 }  // namespace
 }  // namespace knoblab::hapticd
 

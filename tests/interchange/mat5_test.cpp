@@ -277,19 +277,25 @@ TEST(Mat5Hostile, NotAMatFile) {
   EXPECT_NE(error_of(text).find("top-level element of type 1"), std::string::npos);
 }
 
-TEST(Mat5Hostile, Version73IsRefusedWithAHint) {
-  // What MATLAB's save -v7.3 writes: a text header as userblock, HDF5 at 512.
+TEST(Mat5Hostile, Version73HeaderWithBrokenHdf5IsRefusedByTheHdf5Reader) {
+  // What MATLAB's save -v7.3 writes: a text header as userblock, HDF5 at 512
+  // (here only its signature: mat73_test.cpp reads whole files).
   std::string v73 = "MATLAB 7.3 MAT-file, Platform: GLNXA64, Created on: Mon Jan 27 2020 HDF5 schema 1.00 .";
   v73.resize(512, ' ');
   v73 += std::string("\x89HDF\r\n\x1a\n", 8) + std::string(64, '\0');
   const std::string msg = error_of(v73);
-  EXPECT_NE(msg.find("MAT v7.3 (HDF5) files are not supported"), std::string::npos) << msg;
-  EXPECT_NE(msg.find("'-v7'"), std::string::npos) << msg;
-  // The HDF5 signature alone is enough.
+  EXPECT_NE(msg.find("t.mat: MAT v7.3: not a readable HDF5 file"), std::string::npos) << msg;
+  // The HDF5 signature alone is enough to go there.
   std::string h5 = Writer().header();
   h5.resize(512, '\0');
   h5 += std::string("\x89HDF\r\n\x1a\n", 8);
-  EXPECT_NE(error_of(h5).find("MAT v7.3 (HDF5)"), std::string::npos);
+  EXPECT_NE(error_of(h5).find("MAT v7.3: not a readable HDF5 file"), std::string::npos);
+  // A v5 header claiming version 0x0200 with no HDF5 behind it.
+  std::string claimed = Writer().header();
+  claimed[124] = 0;
+  claimed[125] = 2;
+  EXPECT_NE(error_of(claimed).find("the header says MAT v7.3, but no HDF5 data follows it at byte 512"),
+            std::string::npos);
 }
 
 // Random byte flips in good files: a MatError or a result, never a crash,

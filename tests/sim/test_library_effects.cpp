@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
+#include <string>
 #include <numbers>
 #include <algorithm>
 #include <stdexcept>
@@ -63,6 +65,24 @@ TEST(LibraryEffects, BadSpecsAreRejectedWithTheReason) {
                           "stribeck:excess=0.002"}) {
     EXPECT_THROW(model::parse_effect_specs(bad), std::invalid_argument) << bad;
   }
+}
+
+TEST(LibraryEffects, ASpecFromAModelFileIsCheckedAsTheTextIs) {
+  const model::EffectSpec s =
+      model::effect_from_params("stribeck", {{"static_excess_Nm", 0.002}, {"stribeck_velocity_rad_s", 0.1}});
+  EXPECT_EQ(s.params,
+            model::parse_effect_spec("stribeck:static_excess_Nm=0.002,stribeck_velocity_rad_s=0.1").params);
+  const auto refused = [](const std::string& id, const model::NamedValues& params, const std::string& why) {
+    try {
+      model::effect_from_params(id, params);
+      ADD_FAILURE() << id << " accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+    }
+  };
+  refused("stribeck", {{"excess", 0.002}}, "excess");  // simulate's old name
+  refused("magnetism", {{"amplitude_Nm", 1.0}}, "unknown effect 'magnetism'");
+  refused("time_delay", {{"delay_s", -0.001}}, "delay_s");
 }
 
 TEST(LibraryEffects, ModelTermsFoldIntoTheKnob) {

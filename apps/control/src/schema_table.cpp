@@ -69,6 +69,71 @@ constexpr std::array kHelloArgs = {
             "the motor in its safe state"),
 };
 
+// load_model / set_params "effects": the effect library's terms the renderer
+// can render (knoblab/model/effect_set.hpp), with the parameter names of the
+// effect table (knoblab/model/effect_table.hpp): those discrepancy reports,
+// a model file carries and `knoblab simulate --effects` takes.
+constexpr std::array kOffsetArgs = {number("offset_Nm", kRequired, -0.5, 0.5, "N·m", "constant torque")};
+constexpr std::array kGravityArgs = {
+    number("amplitude_Nm", kRequired, -0.5, 0.5, "N·m", "once per revolution, τ = amplitude_Nm·sin(θ + phase_rad)"),
+    number("phase_rad", kOptional, -1000, 1000, "rad", "its phase (default 0)"),
+};
+constexpr std::array kSpringArgs = {
+    number("stiffness_Nm_per_rad", kOptional, -10, 10, "N·m/rad", "τ = K·(θ − θ₀) + K₃·(θ − θ₀)³"),
+    number("cubic_Nm_per_rad3", kOptional, -1000, 1000, "N·m/rad³", "cubic stiffness K₃"),
+    number("centre_rad", kOptional, -1000, 1000, "rad", "centre θ₀ (default 0)"),
+};
+constexpr std::array<std::string_view, 2> kSpringKeys = {"stiffness_Nm_per_rad", "cubic_Nm_per_rad3"};
+constexpr std::array kSpringGroups = {GroupRule{GroupRule::Kind::at_least_one, kSpringKeys}};
+constexpr std::array kPeriodicArgs = {
+    number("amplitude_Nm", kRequired, -0.5, 0.5, "N·m", "τ = A·sin(2πθ/period_rad + phase_rad), a torque unrelated to the detents"),
+    number("period_rad", kOptional, 0.006, 630, "rad", "period over position (default 2π: once per revolution)"),
+    number("phase_rad", kOptional, -1000, 1000, "rad", "phase (default 0)"),
+};
+constexpr std::array kShapeArgs = {
+    number("a2_Nm", kOptional, -0.5, 0.5, "N·m", "detent harmonics: Σ a_k·sin(kφ) + b_k·cos(kφ), φ = θ/P_pos"),
+    number("b2_Nm", kOptional, -0.5, 0.5, "N·m", "2nd harmonic, cosine"),
+    number("a3_Nm", kOptional, -0.5, 0.5, "N·m", "3rd harmonic, sine"),
+    number("b3_Nm", kOptional, -0.5, 0.5, "N·m", "3rd harmonic, cosine"),
+    number("a4_Nm", kOptional, -0.5, 0.5, "N·m", "4th harmonic, sine"),
+    number("b4_Nm", kOptional, -0.5, 0.5, "N·m", "4th harmonic, cosine"),
+};
+constexpr std::array<std::string_view, 6> kShapeKeys = {"a2_Nm", "b2_Nm", "a3_Nm", "b3_Nm", "a4_Nm", "b4_Nm"};
+constexpr std::array kShapeGroups = {GroupRule{GroupRule::Kind::at_least_one, kShapeKeys}};
+constexpr std::array kStribeckArgs = {
+    number("static_excess_Nm", kRequired, 0, 0.5, "N·m", "friction above its sliding level near zero speed"),
+    number("stribeck_velocity_rad_s", kOptional, 1e-6, 100, "rad/s",
+           "τ = sgn(θ̇)·ΔC·exp(−(θ̇/v_s)²), v_s this (default 1)"),
+};
+constexpr std::array kPowerDampingArgs = {
+    number("coefficient", kRequired, 0, 1, "N·m·(s/rad)^p", "τ = sgn(θ̇)·c·abs(θ̇)^p, c this"),
+    number("exponent", kOptional, 0.1, 4, "", "p (default 2)"),
+};
+constexpr std::array kEndstopArgs = {
+    number("position_rad", kRequired, 0.001, 1000, "rad", "walls at ±position_rad"),
+    number("stiffness_Nm_per_rad", kRequired, 0, 100, "N·m/rad", "beyond a wall, τ = stiffness·depth"),
+    number("damping_Nm_s_per_rad", kOptional, 0, 1, "N·m·s/rad", "+ damping·θ̇ while inside a wall"),
+};
+constexpr ObjectSchema kOffset{kOffsetArgs, {}};
+constexpr ObjectSchema kGravity{kGravityArgs, {}};
+constexpr ObjectSchema kSpring{kSpringArgs, kSpringGroups};
+constexpr ObjectSchema kPeriodic{kPeriodicArgs, {}};
+constexpr ObjectSchema kShape{kShapeArgs, kShapeGroups};
+constexpr ObjectSchema kStribeck{kStribeckArgs, {}};
+constexpr ObjectSchema kPowerDamping{kPowerDampingArgs, {}};
+constexpr ObjectSchema kEndstop{kEndstopArgs, {}};
+constexpr std::array kEffectsArgs = {
+    object("offset", kOptional, &kOffset, "a constant torque (offset)"),
+    object("gravity", kOptional, &kGravity, "a torque once per revolution (gravity)"),
+    object("spring", kOptional, &kSpring, "a restoring spring (spring)"),
+    object_list("periodic_torque", kOptional, {0, 4}, &kPeriodic, "position-periodic torques (periodic_torque)"),
+    object("detent_shape", kOptional, &kShape, "harmonics 2…4 of the detents (detent_shape)"),
+    object("stribeck", kOptional, &kStribeck, "Stribeck friction, outside the stick band (stribeck)"),
+    object("nonlinear_damping", kOptional, &kPowerDamping, "power-law damping, outside the stick band"),
+    object("endstop", kOptional, &kEndstop, "walls (endstop)"),
+};
+constexpr ObjectSchema kEffects{kEffectsArgs, {}};
+
 // load_model / set_params: the render model (Eq. 14) plus options.
 constexpr std::array kModelArgs = {
     number("M_acc", kRequired, 0, 0.01, "kg·m²", "inertia, τ = M_acc·θ̈"),
@@ -80,12 +145,14 @@ constexpr std::array kModelArgs = {
     number("D_pos", kOptional, 0, 0.5, "N·m", "static friction limit, positive torque"),
     number("K_vm", kOptional, 0, 100, "N·m/rad", "virtual-mass coupling stiffness"),
     number("B_vm", kOptional, 0, 1, "N·m·s/rad", "virtual-mass coupling damping"),
+    object("effects", kOptional, &kEffects,
+           "terms beyond Eq. 14 (knoblab discrepancy --model-out); set_params replaces the whole set"),
 };
 constexpr auto kParamArgs = all_optional(kModelArgs);
 constexpr std::array<std::string_view, 3> kStickKeys = {"dv", "D_neg", "D_pos"};
 constexpr std::array<std::string_view, 2> kVirtualMassKeys = {"K_vm", "B_vm"};
-constexpr std::array<std::string_view, 9> kParamKeys = {
-    "M_acc", "B_vel", "A_pos", "P_pos", "dv", "D_neg", "D_pos", "K_vm", "B_vm"};
+constexpr std::array<std::string_view, 10> kParamKeys = {
+    "M_acc", "B_vel", "A_pos", "P_pos", "dv", "D_neg", "D_pos", "K_vm", "B_vm", "effects"};
 constexpr std::array kModelGroups = {
     GroupRule{GroupRule::Kind::all_or_none, kStickKeys},
     GroupRule{GroupRule::Kind::all_or_none, kVirtualMassKeys},

@@ -8,10 +8,12 @@
 #include <numbers>
 #include <cstdio>
 #include <span>
+#include <string>
 #include <utility>
 
 #include "candidates.hpp"
 #include "extended_model.hpp"
+#include "final_knob.hpp"
 #include "forward_view.hpp"
 #include "motion.hpp"
 #include "knoblab/discovery/block_drop.hpp"
@@ -335,7 +337,10 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
   const std::size_t B = out.heldout_recording ? B0 : blocks_for(d, B0);
   out.blocks = out.heldout_recording ? 0 : B;
   Split s = split_rows(d, all_d, h, all_h, B, opt);
-  const fit::FitResult base_fit = fit::fit_knob(subset(d, s.train));
+  opt.hooks.report("fitting the base model");
+  fit::FitOptions base_options;
+  base_options.hooks = opt.hooks;
+  const fit::FitResult base_fit = fit::fit_knob(subset(d, s.train), base_options);
   // Near-stuck samples: inside the fitted stick band, and in any case below
   // 2 % of the brisk speed (an effect the base lacks can hide the band from
   // its estimate).
@@ -371,6 +376,7 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
     m.base[model::kA_pos] = 0.0;
   }
   detail::fit_extended(m, d, s.train);
+  opt.hooks.check();
   const ExtendedModel base_model = m;
   const Residuals base_res = residuals_of(m, s);
   const Score base_score = score(base_res, s);
@@ -397,10 +403,14 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
       double gain = 0.0, t = 0.0;
     };
     std::vector<Tried> tried;
-    for (const EffectId id : pool) {
+    const std::string stage = "trying candidates, round " + std::to_string(round + 1);
+    for (std::size_t k = 0; k < pool.size(); ++k) {
+      const EffectId id = pool[k];
+      opt.hooks.report(stage, k, pool.size());
       // Periodic torques may repeat (cogging has several); the rest are one each.
       if (m.has(id) && id != EffectId::PeriodicTorque) continue;
       std::optional<ExtendedModel> fitted = detail::fit_candidate(id, m, d, s.train, r_train);
+      opt.hooks.check();
       if (!fitted) continue;
       Tried t{std::move(*fitted), {}, {}, 0.0, 0.0};
       const Residuals r = residuals_of(t.model, s);
@@ -465,12 +475,14 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
     current = base_score;
   }
   out.final_model = summary_of(m, current);
+  out.final_knob = detail::final_knob_of(m, base_fit.stick);
   if (out.findings.empty()) {
     out.same_rows = {out.base.heldout_rows, std::nan(""), std::nan("")};
   } else {
     const Score b = score(base_res, current_res, s);
     out.same_rows = {b.held_rows, b.rmse_held, score(current_res, base_res, s).rmse_held};
   }
+  opt.hooks.report("residual tests");
   append_trace(out.trace, d, s.train, base_res.train, current_res.train, false);
   append_trace(out.trace, h, s.held, base_res.held, current_res.held, true);
   // The forward view on the held-out rows, windows begun in time order.
@@ -485,6 +497,7 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
     summary->whiteness_p = f.whiteness.p;
     summary->independence_p = f.independence.p;
   }
+  opt.hooks.check();
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }

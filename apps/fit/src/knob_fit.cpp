@@ -6,6 +6,7 @@
 #include <numbers>
 #include <numeric>
 
+#include "knoblab/fit/ceres_hooks.hpp"
 #include "position_cells.hpp"
 #include "residual.hpp"
 
@@ -85,8 +86,11 @@ Solved solve(const Residuals& res, const FitOptions& opt, std::vector<double> st
   so.parameter_tolerance = 1e-12;
   so.gradient_tolerance = 1e-14;
   so.logging_type = ceres::SILENT;
+  CancelCallback cancel(opt.hooks);
+  so.callbacks.push_back(&cancel);
   ceres::Solver::Summary summary;
   ceres::Solve(so, &problem, &summary);
+  opt.hooks.check();  // an aborted solve is no failure to report
   if (!summary.IsSolutionUsable()) {
     throw FitDataError("the fit did not converge: " + summary.message);
   }
@@ -96,9 +100,10 @@ Solved solve(const Residuals& res, const FitOptions& opt, std::vector<double> st
 // A ≥ 0 and S in (−π, π]: one spelling for every equivalent detent term.
 void canonical_detents(std::vector<double>& p) {
   const std::size_t a = p.size() - 3;  // A_pos, P_pos, S_pos are the last three
-  if (p[a] < 0) p[a] = -p[a], p[a + 2] += std::numbers::pi;
-  p[a + 2] = std::remainder(p[a + 2], 2 * std::numbers::pi);
-  if (p[a + 2] <= -std::numbers::pi) p[a + 2] += 2 * std::numbers::pi;
+  model::Detents<double> d;
+  d.A = p[a], d.P = p[a + 1], d.S = p[a + 2];
+  d = model::canonical(d);
+  p[a] = d.A, p[a + 2] = d.S;
 }
 
 // Rows for the detent search and starting values: where the knob slides
@@ -224,7 +229,9 @@ FitResult fit_knob(const FitData& d, const FitOptions& opt) {
     start = *opt.start;
     r.detents = start[a] != 0.0;
   } else {
+    opt.hooks.report("searching detents");
     const detail::StartValues sv = detail::find_start(d, moving_rows(d, rows), opt);
+    opt.hooks.check();
     start = sv.params;
     bounds = {sv.period_lo, sv.period_hi};
     r.detents = sv.detents;
@@ -248,6 +255,7 @@ FitResult fit_knob(const FitData& d, const FitOptions& opt) {
     cells_P = P;
     res.cells = &*cells;
   };
+  opt.hooks.report("fitting");
   if (opt.compress) build_cells(std::abs(start[a + 1]));
   detail::PositionCells* cp = cells ? &*cells : nullptr;
   r.phases.cells = lap();
@@ -269,6 +277,7 @@ FitResult fit_knob(const FitData& d, const FitOptions& opt) {
   // Residuals (model − measured) of rows at s.params, while nothing changed them.
   std::vector<double> e;
   if (opt.stick_band && opt.model == ModelKind::Thesis6) {
+    opt.hooks.report("stick band");
     const RowModel model(res, opt.model, s.params);
     e.resize(rows.size());
     for (std::size_t j = 0; j < rows.size(); ++j) e[j] = model.residual(rows[j]);
@@ -296,6 +305,7 @@ FitResult fit_knob(const FitData& d, const FitOptions& opt) {
   // sliding law cannot describe would set M. Leave out what lies beyond five
   // robust standard deviations (MAD) and fit once more.
   if (opt.trim_outliers) {
+    opt.hooks.report("outliers");
     std::vector<std::uint32_t> kept;
     if (e.size() == rows.size()) {
       kept = within_robust_range(rows, [&](std::size_t j) { return e[j]; });
@@ -315,6 +325,8 @@ FitResult fit_knob(const FitData& d, const FitOptions& opt) {
   }
   if (r.detents) canonical_detents(s.params);
   r.params = s.params;
+  opt.hooks.check();
+  opt.hooks.report("intervals");
 
   const detail::CovarianceEstimate cov =
       cells ? detail::covariance_from_cells(opt.model, *cells, rows, r.params.data(), r.fitted, e)

@@ -1,6 +1,8 @@
 #include "knoblab/hal/factory.hpp"
 
+#include <cmath>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "knoblab/hal/config_reader.hpp"
@@ -8,6 +10,7 @@
 #include "knoblab/hal/comedi_daq.hpp"
 #include "knoblab/hal/gpiod_lines.hpp"
 #include "knoblab/hal/memory_lines.hpp"
+#include "knoblab/sim/hand.hpp"
 #include "knoblab/sim/presets.hpp"
 
 namespace knoblab::hal {
@@ -41,8 +44,24 @@ std::unique_ptr<capture::Daq> make_sim_daq(const nlohmann::json& config, const s
   sim::PlantConfig plant;
   plant.knob = preset->knob;
   plant.seed = r.uint64_or("seed", plant.seed);
+  std::optional<sim::HandParams> hand;
+  if (r.has("hand")) {  // someone turning the knob, for render mode
+    ConfigReader h = r.object("hand");
+    hand.emplace();
+    hand->amplitude_rad = h.number_or("amplitude_rad", hand->amplitude_rad);
+    hand->frequency_hz = h.number_or("frequency_hz", hand->frequency_hz);
+    hand->stiffness = h.number_or("stiffness", hand->stiffness);
+    hand->damping = h.number_or("damping", hand->damping);
+    if (!(std::abs(hand->amplitude_rad) <= 100.0)) h.fail("amplitude_rad", "must be within ±100 rad");
+    if (!(hand->frequency_hz >= 0.0 && hand->frequency_hz <= 100.0)) h.fail("frequency_hz", "must be in [0, 100] Hz");
+    if (!(hand->stiffness >= 0.0 && hand->stiffness <= 100.0)) h.fail("stiffness", "must be in [0, 100] N·m/rad");
+    if (!(hand->damping >= 0.0 && hand->damping <= 10.0)) h.fail("damping", "must be in [0, 10] N·m·s/rad");
+    h.finish();
+  }
   r.finish();
-  return std::make_unique<capture::SimDaq>(plant, rate_hz);
+  auto daq = std::make_unique<capture::SimDaq>(plant, rate_hz);
+  if (hand) daq->plant().add_effect(sim::make_hand(*hand));
+  return daq;
 }
 
 std::unique_ptr<DigitalLines> make_memory_lines(const nlohmann::json& config, const std::string& where) {

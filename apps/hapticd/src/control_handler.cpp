@@ -7,6 +7,7 @@
 #include <variant>
 
 #include "knoblab/hapticd/daemon.hpp"
+#include "knoblab/hapticd/render_effects.hpp"
 #include "short_number.hpp"
 #include "knoblab/hapticd/tiles_json.hpp"
 #include "knoblab/rt/timing_stats.hpp"
@@ -125,6 +126,8 @@ RenderParams render_params_from_args(const json& a, RenderParams base, bool part
   }
   p.K_vm = get(a, "K_vm", p.K_vm);
   p.B_vm = get(a, "B_vm", p.B_vm);
+  if (a.contains("effects")) p.effects = effects_from_args(a.at("effects"));
+  else if (!partial) p.effects = {};
   return p;
 }
 
@@ -152,7 +155,7 @@ std::optional<ParamProblem> render_params_problem(const RenderParams& p, const S
     if (auto b = beyond("D_neg", p.D_neg)) return b;
     if (auto b = beyond("D_pos", p.D_pos)) return b;
   }
-  return std::nullopt;
+  return effects_problem(p.effects, limits);
 }
 
 Reply ControlHandler::render(const json& a, bool partial) {

@@ -21,6 +21,7 @@
 #include "knoblab/control/schema.hpp"
 #include "knoblab/hapticd/control_handler.hpp"
 #include "knoblab/hapticd/daemon.hpp"
+#include "knoblab/hapticd/model_file.hpp"
 #include "knoblab/rt/stats_json.hpp"
 #include "knoblab/rt/timing_stats.hpp"
 
@@ -53,7 +54,8 @@ const char* kUsage =
     "  --cycles N           stop after N cycles\n"
     "  --max-overruns N     overruns in a row that latch the overruns fault (default 10;\n"
     "                       raise it only on a host that is not realtime, e.g. for tests)\n"
-    "  --model FILE         render model to load at start (knoblab fit --render-model)\n"
+    "  --model FILE         model to render from the start (knoblab fit --render-model,\n"
+    "                       knoblab discrepancy --model-out)\n"
     "  --calibration FILE   sensor constants to start with, where accept_calibration\n"
     "                       saves them (created on the first accept; docs/protocol.md)\n"
     "  --free-run           run cycles back to back (benchmark); renders a model with\n"
@@ -108,24 +110,20 @@ void check_lines_for_a_real_daq(const Options& o) {
                    "--allow-memory-lines for a bench test without them");
 }
 
-// A render model file (`knoblab fit --render-model`): {"model": "render4",
-// "params": {…}} where params are load_model's arguments, checked by the
-// same protocol schema a client's load_model is.
+// A model file (`knoblab fit --render-model`, `knoblab discrepancy
+// --model-out`) as load_model's arguments, checked by the same protocol
+// schema a client's load_model is.
 knoblab::hapticd::RenderParams read_model_file(const std::string& path) {
-  std::ifstream f(path);
-  if (!f) throw UsageError("--model: cannot read " + path);
-  json j;
+  json args;
   try {
-    j = json::parse(f);
-  } catch (const json::parse_error& e) {
-    throw UsageError("--model " + path + ": not JSON: " + e.what());
+    args = knoblab::hapticd::read_model_file_args(path);
+  } catch (const knoblab::hapticd::ModelFileError& e) {
+    throw UsageError(std::string("--model ") + e.what());
   }
-  if (!j.is_object() || j.value("model", "") != "render4" || !j.contains("params"))
-    throw UsageError("--model " + path + ": expected {\"model\": \"render4\", \"params\": {...}}");
   const auto& spec = knoblab::control::command_spec(knoblab::control::Command::load_model);
-  if (auto problem = knoblab::control::validate_args(j["params"], spec.args))
-    throw UsageError("--model " + path + ": params." + problem->key + " " + problem->problem);
-  return knoblab::hapticd::render_params_from_args(j["params"], {}, false);
+  if (auto problem = knoblab::control::validate_args(args, spec.args))
+    throw UsageError("--model " + path + ": " + problem->key + " " + problem->problem);
+  return knoblab::hapticd::render_params_from_args(args, {}, false);
 }
 
 Options parse(const std::vector<std::string>& a) {

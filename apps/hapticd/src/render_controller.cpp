@@ -23,6 +23,15 @@ void RenderController::set_params(const RenderParams& p, bool immediately) {
   B_.retarget(p.B_vel, n);
   A_.retarget(p.A_pos, n);
   f_.retarget(frequency_of(p), n);
+  if (immediately) {
+    effects_ = p.effects;
+    effects_pending_ = false;
+    effects_gain_.set(1.0);
+  } else if (p.effects != (effects_pending_ ? next_effects_ : effects_)) {
+    next_effects_ = p.effects;
+    effects_pending_ = true;
+    effects_gain_.retarget(0.0, n / 2);
+  }
 }
 
 void RenderController::reset() {
@@ -30,6 +39,11 @@ void RenderController::reset() {
   alpha_box_.reset();
   started_ = false;
   cycle_ = 0;
+  if (effects_pending_) {  // nothing is felt yet: no fade
+    effects_ = next_effects_;
+    effects_pending_ = false;
+  }
+  effects_gain_.set(1.0);
   tiles_start_t_ = 0.0;  // time tiles start over with the render clock
 }
 
@@ -53,13 +67,19 @@ void RenderController::update(const capture::SensorReading& in, capture::DaqOutp
   }
 
   const double M = M_.step(), B = B_.step(), A = A_.step(), f = f_.step();
+  const double g = effects_gain_.step();
+  if (effects_pending_ && g == 0.0) {  // faded out: the new set fades in
+    effects_ = next_effects_;
+    effects_pending_ = false;
+    effects_gain_.retarget(1.0, ramp_cycles_ / 2);
+  }
 
   // Inertia: virtual-mass coupling, box-filtered; its mass acceleration is
   // what the knob "has", so it is also the recorded α in render mode.
   const double tau_acc = acc_box_.process(vm_.update(M, target_.K_vm, target_.B_vm, s.theta, s.omega, dt_));
   s.alpha = M > 0.0 ? tau_acc / M : 0.0;
 
-  // Damping, detents and the stick band: the model core's terms.
+  // Damping, detents, the stick band and the effects: the model core's terms.
   model::RenderModel<double> m;
   m.B_vel = B;
   m.detents.A = A;
@@ -67,6 +87,8 @@ void RenderController::update(const capture::SensorReading& in, capture::DaqOutp
   if (!(f > 0.0)) m.detents.A = 0.0;
   m.stick_enabled = target_.stick;
   m.stick = {target_.dv, target_.D_neg, target_.D_pos};
+  m.effects = g == 1.0 ? effects_ : effects_.scaled(g);
+  if (f > 0.0) m.effects.shape_detents(m.detents);  // harmonics of detents there are
   const model::Kinematics<double> k{s.theta, s.omega, 0.0};  // M = 0: inertia is the virtual mass
   double tau = m.torque(k, s.torque - tau_acc) + tau_acc;
 

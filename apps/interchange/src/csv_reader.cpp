@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "knoblab/interchange/utf8.hpp"
 #include "knoblab/interchange/csv.hpp"
 #include "knoblab/model/filters.hpp"
+#include "csv_fields.hpp"
 #include "line_reader.hpp"
 
 namespace knoblab::interchange {
@@ -31,18 +33,16 @@ CsvError::CsvError(std::string source, std::size_t line, std::size_t column, std
 
 namespace {
 
+using detail::NumError;
+using detail::parse_number;
+using detail::quote;
+using detail::trim;
+
 enum Channel : std::size_t { kT, kTheta, kOmega, kAlpha, kTorque, kCommand, kChannelCount };
 // The flags column's index in the column map: after the channels.
 constexpr std::size_t kFlags = kChannelCount;
 
 std::string_view column_name(std::size_t ch) { return ch == kFlags ? kFlagsColumn : kChannelNames[ch]; }
-
-std::string_view trim(std::string_view s) {
-  const auto ws = [](char c) { return c == ' ' || c == '\t'; };
-  while (!s.empty() && ws(s.front())) s.remove_prefix(1);
-  while (!s.empty() && ws(s.back())) s.remove_suffix(1);
-  return s;
-}
 
 void split(std::string_view line, std::vector<std::string_view>& fields) {
   fields.clear();
@@ -54,45 +54,10 @@ void split(std::string_view line, std::vector<std::string_view>& fields) {
   }
 }
 
-// A field for an error message: quoted, shortened, non-printables escaped.
-std::string quote(std::string_view s) {
-  constexpr std::size_t kMax = 40;
-  std::string out = "\"";
-  for (std::size_t i = 0; i < s.size() && i < kMax; ++i) {
-    const auto c = static_cast<unsigned char>(s[i]);
-    if (c >= 0x20 && c < 0x7f && c != '"' && c != '\\') {
-      out += static_cast<char>(c);
-    } else {
-      static constexpr char kHex[] = "0123456789abcdef";
-      out += "\\x";
-      out += kHex[c >> 4];
-      out += kHex[c & 15];
-    }
-  }
-  if (s.size() > kMax) out += "...";
-  return out + "\"";
-}
-
 std::string allowed_list() {
   std::string s;
   for (auto name : kChannelNames) s += (s.empty() ? "" : ", ") + std::string(name);
   return s + ", " + std::string(kFlagsColumn);
-}
-
-enum class NumError { kNone, kEmpty, kNotANumber, kNotFinite, kOutOfRange, kNotUnsigned };
-
-NumError parse_number(std::string_view f, double& out) {
-  if (f.empty()) return NumError::kEmpty;
-  std::string_view digits = f;
-  // from_chars rejects '+'; other writers emit it, so accept one.
-  if (digits.front() == '+' && digits.size() > 1 && digits[1] != '-' && digits[1] != '+')
-    digits.remove_prefix(1);
-  const char* end = digits.data() + digits.size();
-  const auto [ptr, ec] = std::from_chars(digits.data(), end, out);
-  if (ec == std::errc::result_out_of_range) return NumError::kOutOfRange;
-  if (ec != std::errc() || ptr != end) return NumError::kNotANumber;
-  if (!std::isfinite(out)) return NumError::kNotFinite;
-  return NumError::kNone;
 }
 
 // A flags field: an unsigned decimal integer that fits SampleFlag's 32 bits.
@@ -122,12 +87,16 @@ class Parser {
  public:
   Parser(std::istream& in, std::string source) : source_(std::move(source)), lines_(in, source_) {}
 
-  Capture run() {
+  Recording run() {
     read_preamble();
     read_rows();
     finish();
-    return std::move(cap_);
+    if (map_line_ == 0) return std::move(cap_);
+    return StaticMap{std::move(cap_.metadata), std::move(cap_.theta), std::move(cap_.torque)};
   }
+
+  // The line of `# kind: static-map`; 0 for a recording over time.
+  std::size_t map_line() const { return map_line_; }
 
  private:
   [[noreturn]] void fail(std::size_t line, std::size_t column, std::string reason) const {
@@ -168,11 +137,21 @@ class Parser {
                              " of the line); save the file as UTF-8");
     body = trim(body);
     const auto colon = body.find(':');
-    if (colon == std::string_view::npos)
+    if (colon == std::string_view::npos) {
       cap_.metadata.emplace_back("", std::string(body));  // free comment
-    else
-      cap_.metadata.emplace_back(std::string(trim(body.substr(0, colon))),
-                                 std::string(trim(body.substr(colon + 1))));
+      return;
+    }
+    const std::string_view key = trim(body.substr(0, colon)), value = trim(body.substr(colon + 1));
+    if (key != kKindKey) {
+      cap_.metadata.emplace_back(std::string(key), std::string(value));
+      return;
+    }
+    // The kind says how to read the rest, so it is not kept as metadata.
+    if (kind_line_ != 0) fail(line_no(), 0, "a second kind line (the first is line " + std::to_string(kind_line_) + ")");
+    kind_line_ = line_no();
+    if (value == kStaticMapKind) map_line_ = line_no();
+    else if (value != "time-series")
+      fail(line_no(), 0, "unknown kind " + quote(value) + " (time-series, the default, or static-map)");
   }
 
   void parse_header(std::string_view header) {
@@ -198,12 +177,17 @@ class Parser {
       if (seen[ch] != 0)
         fail(header_line_, col, "duplicate column '" + std::string(name) + "' (also column " +
                                     std::to_string(seen[ch]) + ")");
+      if (map_line_ != 0 && ch != kTheta && ch != kTorque)
+        fail(header_line_, col, "column '" + std::string(name) + "' in a static map (kind line " +
+                                    std::to_string(map_line_) + "): a map holds only theta and torque, no time");
       seen[ch] = col;
       columns_.push_back(ch);
     }
     std::string missing;
     std::size_t n_missing = 0;
-    for (std::size_t ch : {kT, kTheta, kTorque})
+    const auto required = map_line_ != 0 ? std::vector<std::size_t>{kTheta, kTorque}
+                                         : std::vector<std::size_t>{kT, kTheta, kTorque};
+    for (std::size_t ch : required)
       if (seen[ch] == 0) {
         missing += (missing.empty() ? "'" : ", '") + std::string(kChannelNames[ch]) + "'";
         ++n_missing;
@@ -211,11 +195,12 @@ class Parser {
     if (n_missing > 0)
       fail(header_line_, 0, std::string(n_missing == 1 ? "missing required column "
                                                        : "missing required columns ") +
-                                missing + " (t, theta and torque are required)");
+                                missing + (map_line_ != 0 ? " (a static map holds theta and torque)"
+                                                          : " (t, theta and torque are required)"));
     cap_.has_command = seen[kCommand] != 0;
     cap_.omega_derived = seen[kOmega] == 0;
     cap_.alpha_derived = seen[kAlpha] == 0;
-    t_col_ = seen[kT];
+    t_col_ = seen[map_line_ != 0 ? kTheta : kT];
   }
 
   std::vector<double>& channel(std::size_t ch) {
@@ -272,9 +257,11 @@ class Parser {
         dest[i]->push_back(v);
       }
       if (first_row_line_ == 0) first_row_line_ = line_no();
-      const double t = cap_.t.back();
+      // Time orders a recording; position orders a static map.
+      const double t = map_line_ != 0 ? cap_.theta.back() : cap_.t.back();
       if (prev_t_line != 0 && !(t > prev_t))
-        fail(line_no(), t_col_, "column 't': time not strictly increasing: " +
+        fail(line_no(), t_col_, std::string(map_line_ != 0 ? "column 'theta': positions" : "column 't': time") +
+                                    " not strictly increasing: " +
                                     std::string(fields_[t_col_ - 1]) + " at line " +
                                     std::to_string(line_no()) + " after " + format(prev_t) +
                                     " at line " + std::to_string(prev_t_line));
@@ -309,10 +296,17 @@ class Parser {
   }
 
   void finish() {
-    const std::size_t rows = cap_.t.size();
+    const std::size_t rows = cap_.theta.size();
     if (rows < kMinRows)
       fail(line_no(), 0, "need at least " + std::to_string(kMinRows) + " data rows, found " +
                              std::to_string(rows));
+    if (map_line_ != 0) {
+      if (!(cap_.theta.back() - cap_.theta.front() < 2 * std::numbers::pi))
+        fail(first_row_line_ + rows - 1, t_col_, "column 'theta': a static map holds one revolution, these "
+                                                 "positions span " + format(cap_.theta.back() - cap_.theta.front()) +
+                                                 " rad (2*pi or more)");
+      return;
+    }
     if (cap_.omega_derived) {
       cap_.omega = model::derivative(cap_.t, cap_.theta);
       check_derived(cap_.omega, "omega", "theta");
@@ -340,23 +334,46 @@ class Parser {
   std::string line_;
   std::vector<std::string_view> fields_;
   std::vector<std::size_t> columns_;  // channel of each field
-  std::size_t header_line_ = 0, t_col_ = 0;
+  std::size_t header_line_ = 0, t_col_ = 0;  // t_col_: theta's in a static map
+  std::size_t kind_line_ = 0, map_line_ = 0;
   std::size_t first_row_line_ = 0;  // data rows are consecutive lines from here
 };
 
 }  // namespace
 
-Capture parse_csv(std::istream& in, std::string_view source_name) {
+Recording parse_recording(std::istream& in, std::string_view source_name) {
   return Parser(in, std::string(source_name)).run();
 }
 
-Capture read_csv(const std::filesystem::path& path) {
+Capture parse_csv(std::istream& in, std::string_view source_name) {
+  Parser parser(in, std::string(source_name));
+  Recording r = parser.run();
+  if (auto* c = std::get_if<Capture>(&r)) return std::move(*c);
+  throw CsvError(std::string(source_name), parser.map_line(), 0,
+                 "a static map (torque over position, no time stamps), not a recording over time: "
+                 "'knoblab inspect' reads it; fit, import and discrepancy need a recording over time "
+                 "(to fit a knob's detents, record it turning slowly instead)");
+}
+
+namespace {
+std::ifstream open_csv(const std::filesystem::path& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw CsvError(path.string(), 0, 0, "is a directory, not a CSV file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw CsvError(path.string(), 0, 0, std::string("cannot open: ") + std::strerror(errno));
+  return in;
+}
+}  // namespace
+
+Capture read_csv(const std::filesystem::path& path) {
+  std::ifstream in = open_csv(path);
   return parse_csv(in, path.string());
+}
+
+Recording read_recording(const std::filesystem::path& path) {
+  std::ifstream in = open_csv(path);
+  return parse_recording(in, path.string());
 }
 
 }  // namespace knoblab::interchange

@@ -20,8 +20,8 @@ bool has_control(std::string_view s) {
 }
 
 // Refuse metadata that would read back differently (or break the format).
-void check_metadata(const Capture& c) {
-  for (const auto& [key, value] : c.metadata) {
+void check_metadata(const std::vector<std::pair<std::string, std::string>>& metadata) {
+  for (const auto& [key, value] : metadata) {
     const auto bad = [&](const char* why) {
       throw std::invalid_argument("metadata '" + key + "' cannot be written: " + why);
     };
@@ -29,6 +29,7 @@ void check_metadata(const Capture& c) {
     if (key.find(':') != std::string::npos) bad("key contains ':'");
     if (key.empty() && value.find(':') != std::string::npos)
       bad("a free comment (empty key) must not contain ':'");
+    if (key == kKindKey) bad("the kind line is the writer's to write");
   }
 }
 
@@ -36,7 +37,7 @@ void check_metadata(const Capture& c) {
 
 void write_csv(const Capture& c, std::ostream& out) {
   validate(c);
-  check_metadata(c);
+  check_metadata(c.metadata);
   for (const auto& [key, value] : c.metadata)
     out << "# " << (key.empty() ? value : key + ": " + value) << '\n';
 
@@ -80,9 +81,33 @@ void write_csv(const Capture& c, std::ostream& out) {
 void write_csv(const Capture& c, const std::filesystem::path& path) {
   // Validate first so a bad capture never even creates the temp file.
   validate(c);
-  check_metadata(c);
+  check_metadata(c.metadata);
 
   write_file_atomically(path, [&](std::ostream& out) { write_csv(c, out); });
+}
+
+void write_static_map(const StaticMap& m, std::ostream& out) {
+  validate(m);
+  check_metadata(m.metadata);
+  out << "# " << kKindKey << ": " << kStaticMapKind << '\n';
+  for (const auto& [key, value] : m.metadata) out << "# " << (key.empty() ? value : key + ": " + value) << '\n';
+  out << "theta,torque\n";
+  char row[2 * 32];
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    char* p = std::to_chars(row, row + sizeof row, m.theta[i]).ptr;
+    *p++ = ',';
+    p = std::to_chars(p, row + sizeof row, m.torque[i]).ptr;
+    *p++ = '\n';
+    out.write(row, p - row);
+  }
+  out.flush();
+  if (!out) throw std::system_error(std::make_error_code(std::errc::io_error), "write_static_map");
+}
+
+void write_static_map(const StaticMap& m, const std::filesystem::path& path) {
+  validate(m);
+  check_metadata(m.metadata);
+  write_file_atomically(path, [&](std::ostream& out) { write_static_map(m, out); });
 }
 
 }  // namespace knoblab::interchange

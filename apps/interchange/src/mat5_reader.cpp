@@ -8,11 +8,14 @@
 
 #include <zlib.h>
 
+#include "file_bytes.hpp"
+#include "knoblab/interchange/array_file.hpp"
+#include "mat73_reader.hpp"
+
 #include <algorithm>
 #include <bit>
 #include <climits>
 #include <cstdint>
-#include <fstream>
 #include <system_error>
 
 namespace knoblab::interchange {
@@ -318,8 +321,7 @@ std::vector<MatArray> parse_mat(std::string_view bytes, std::string_view source_
   const auto whole = [&](const std::string& reason) { return MatError(source, 0, reason, true); };
   static constexpr std::string_view kHdf5Signature{"\x89HDF\r\n\x1a\n", 8};
   if (bytes.starts_with("MATLAB 7.3") || (bytes.size() >= 520 && bytes.substr(512, 8) == kHdf5Signature))
-    throw whole("MAT v7.3 (HDF5) files are not supported; save it in MATLAB with "
-                "save(..., '-v7') or save(..., '-v6')");
+    return detail::parse_mat73(bytes, source, limits);
   if (!bytes.starts_with("MATLAB"))
     throw whole("not a MAT v5 file: it does not start with the 'MATLAB 5.0 MAT-file' header text "
                 "(MAT v4 files are not supported either)");
@@ -333,7 +335,7 @@ std::vector<MatArray> parse_mat(std::string_view bytes, std::string_view source_
   std::size_t arrays = 0;
   const Buffer b{bytes, source, endian == "MI", limits, arrays};
   const auto version = b.load(124, 2);
-  if (version == 0x0200) throw whole("MAT v7.3 files are not supported; save with -v7 or -v6");
+  if (version == 0x0200) throw whole("the header says MAT v7.3, but no HDF5 data follows it at byte 512");
   if (version != 0x0100) b.fail(124, "unsupported MAT-file version " + std::to_string(version));
 
   std::vector<MatArray> vars;
@@ -342,32 +344,13 @@ std::vector<MatArray> parse_mat(std::string_view bytes, std::string_view source_
 }
 
 std::vector<MatArray> read_mat(const std::filesystem::path& path, const MatLimits& limits) {
-  const std::string source = path.string();
-  std::error_code ec;
-  const auto size = std::filesystem::file_size(path, ec);
-  if (ec) throw MatError(source, 0, "cannot read: " + ec.message(), true);
-  if (size > limits.max_file_bytes)
-    throw MatError(source, 0, "file of " + std::to_string(size) + " bytes is over the " +
-                                  std::to_string(limits.max_file_bytes) + "-byte limit", true);
-  std::ifstream in(path, std::ios::binary);
-  std::string bytes(static_cast<std::size_t>(size), '\0');
-  if (!in || !in.read(bytes.data(), static_cast<std::streamsize>(size)))
-    throw MatError(source, 0, "cannot read the file", true);
-  return parse_mat(bytes, source, limits);
+  return parse_mat(detail::read_file_bytes(path, limits), path.string(), limits);
 }
 
 MatArray read_mat_variable(const std::filesystem::path& path, std::string_view name,
                            const MatLimits& limits) {
   std::vector<MatArray> vars = read_mat(path, limits);
-  std::string present;
-  for (auto& v : vars) {
-    if (v.name == name) return std::move(v);
-    present += (present.empty() ? "" : ", ") + v.name + " (" + v.describe() + ")";
-  }
-  throw MatError(path.string(), 0,
-                 "no variable '" + std::string(name) + "'; the file holds " +
-                     (present.empty() ? "no variables" : present),
-                 true);
+  return take_array(vars, name, path.string());
 }
 
 }  // namespace knoblab::interchange

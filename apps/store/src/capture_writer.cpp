@@ -4,10 +4,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "internal.hpp"
+
 namespace knoblab::store {
 
 CaptureWriter::CaptureWriter(std::shared_ptr<sqlite::Connection> db, std::int64_t id,
-                             bool has_command, WriterOptions options)
+                             bool has_command, WriterOptions options,
+                             std::optional<std::int64_t> created_knob)
     : db_(std::move(db)),
       id_(id),
       has_command_(has_command),
@@ -15,7 +18,8 @@ CaptureWriter::CaptureWriter(std::shared_ptr<sqlite::Connection> db, std::int64_
       insert_(db_->prepare(
           "INSERT INTO samples (capture_id, idx, t, theta, omega, alpha, torque, command, flags)"
           " VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9)")),
-      update_count_(db_->prepare("UPDATE captures SET sample_count = ?2 WHERE id = ?1")) {
+      update_count_(db_->prepare("UPDATE captures SET sample_count = ?2 WHERE id = ?1")),
+      created_knob_(created_knob) {
   batch_.reserve(options_.batch_size);  // no allocation while capturing
   insert_.bind_int(1, id_);             // bindings survive the auto-reset after each row
   update_count_.bind_int(1, id_);
@@ -31,7 +35,8 @@ CaptureWriter::CaptureWriter(CaptureWriter&& o) noexcept
       batch_(std::move(o.batch_)),
       committed_(o.committed_),
       last_t_(o.last_t_),
-      closed_(o.closed_) {
+      closed_(o.closed_),
+      created_knob_(o.created_knob_) {
   o.closed_ = true;
 }
 
@@ -126,6 +131,13 @@ void CaptureWriter::finish_incomplete(std::string_view reason) {
   if (closed_) throw std::logic_error("capture already finished");
   if (reason.empty()) throw std::invalid_argument("an incomplete capture needs a reason");
   close("incomplete", reason);
+}
+
+void CaptureWriter::discard() {
+  if (closed_) throw std::logic_error("capture already finished");
+  detail::remove_unfinished_capture(*db_, id_, created_knob_);
+  batch_.clear();
+  closed_ = true;
 }
 
 void CaptureWriter::abandon(std::string_view reason) {

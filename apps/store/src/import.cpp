@@ -60,7 +60,7 @@ std::int64_t Store::import_capture(const interchange::Capture& c, const NewCaptu
     id = detail::insert_capture_row(*db_, row, "recording", c.has_command, &created_knob);
     tx.commit();
   }
-  const std::optional<std::int64_t> knob = capture_info(id)->knob_id;
+  const std::optional<std::int64_t> knob = created_knob ? detail::knob_of_capture(*db_, id) : std::nullopt;
 
   try {
     auto insert = db_->prepare(
@@ -114,15 +114,7 @@ std::int64_t Store::import_capture(const interchange::Capture& c, const NewCaptu
     // stays 'recording' under our pid and the next open after we exit marks
     // it 'incomplete'; the original error is the one to report.
     try {
-      sqlite::Transaction tx(*db_);
-      db_->prepare("DELETE FROM captures WHERE id = ?1").bind_int(1, id).run();
-      if (created_knob && knob)
-        db_->prepare(
-               "DELETE FROM knobs WHERE id = ?1"
-               " AND NOT EXISTS (SELECT 1 FROM captures WHERE knob_id = ?1)")
-            .bind_int(1, *knob)
-            .run();
-      tx.commit();
+      detail::remove_unfinished_capture(*db_, id, knob);
     } catch (const StoreError&) {
     }
     throw;

@@ -117,6 +117,34 @@ CREATE TABLE discrepancies (
 CREATE INDEX discrepancies_by_capture ON discrepancies(capture_id);
 CREATE INDEX discrepancies_by_heldout ON discrepancies(heldout_capture_id);
 )sql",
+    // 7: where each result came from: the knoblab version that made it, the
+    // SHA-256 of the capture's samples it analysed, the options it ran with
+    // (created_at says when). NULL all three for results stored before this
+    // version, which nobody can vouch for now; a row has all or none. And a
+    // discrepancy result's report files, kept like a fit's (step 4).
+    R"sql(
+ALTER TABLE fits ADD COLUMN tool_version TEXT
+  CHECK (tool_version IS NULL OR length(tool_version) > 0);
+ALTER TABLE fits ADD COLUMN input_sha256 TEXT
+  CHECK (input_sha256 IS NULL OR (length(input_sha256) = 64 AND input_sha256 NOT GLOB '*[^0-9a-f]*'));
+ALTER TABLE fits ADD COLUMN options TEXT
+  CHECK ((options IS NULL OR CASE WHEN json_valid(options) THEN json_type(options) = 'object' ELSE 0 END)
+         AND (tool_version IS NULL) = (options IS NULL) AND (input_sha256 IS NULL) = (options IS NULL));
+ALTER TABLE discrepancies ADD COLUMN tool_version TEXT
+  CHECK (tool_version IS NULL OR length(tool_version) > 0);
+ALTER TABLE discrepancies ADD COLUMN input_sha256 TEXT
+  CHECK (input_sha256 IS NULL OR (length(input_sha256) = 64 AND input_sha256 NOT GLOB '*[^0-9a-f]*'));
+ALTER TABLE discrepancies ADD COLUMN options TEXT
+  CHECK ((options IS NULL OR CASE WHEN json_valid(options) THEN json_type(options) = 'object' ELSE 0 END)
+         AND (tool_version IS NULL) = (options IS NULL) AND (input_sha256 IS NULL) = (options IS NULL));
+CREATE TABLE discrepancy_files (
+  discrepancy_id INTEGER NOT NULL REFERENCES discrepancies(id) ON DELETE CASCADE,
+  name           TEXT NOT NULL CHECK (length(name) > 0 AND instr(name, '/') = 0
+                                     AND name NOT IN ('.', '..')),
+  bytes          BLOB NOT NULL CHECK (typeof(bytes) = 'blob'),
+  UNIQUE (discrepancy_id, name)
+);
+)sql",
 };
 
 #undef KNOBLAB_NOW

@@ -209,14 +209,38 @@ std::int64_t detail::insert_capture_row(sqlite::Connection& db, const NewCapture
   return db.last_insert_rowid();
 }
 
+std::optional<std::int64_t> detail::knob_of_capture(sqlite::Connection& db, std::int64_t id) {
+  auto st = db.prepare("SELECT knob_id FROM captures WHERE id = ?1");
+  st.bind_int(1, id);
+  std::optional<std::int64_t> knob;
+  if (st.step() && !st.is_null(0)) knob = st.column_int(0);
+  st.reset();
+  return knob;
+}
+
+void detail::remove_unfinished_capture(sqlite::Connection& db, std::int64_t id,
+                                       std::optional<std::int64_t> created_knob) {
+  sqlite::Transaction tx(db);
+  db.prepare("DELETE FROM captures WHERE id = ?1").bind_int(1, id).run();
+  if (created_knob)
+    db.prepare(
+          "DELETE FROM knobs WHERE id = ?1"
+          " AND NOT EXISTS (SELECT 1 FROM captures WHERE knob_id = ?1)")
+        .bind_int(1, *created_knob)
+        .run();
+  tx.commit();
+}
+
 CaptureWriter Store::begin_capture(const NewCapture& info, WriterOptions options) {
   if (options.batch_size == 0) throw std::invalid_argument("batch_size must be at least 1");
   if (info.source.empty())
     throw std::invalid_argument("NewCapture.source is required (e.g. 'simulate', 'hapticd')");
   sqlite::Transaction tx(*db_);
-  const auto id = detail::insert_capture_row(*db_, info, "recording", info.has_command);
+  bool created_knob = false;
+  const auto id = detail::insert_capture_row(*db_, info, "recording", info.has_command, &created_knob);
+  const auto knob = created_knob ? detail::knob_of_capture(*db_, id) : std::nullopt;
   tx.commit();
-  return CaptureWriter(db_, id, info.has_command, std::move(options));
+  return CaptureWriter(db_, id, info.has_command, std::move(options), knob);
 }
 
 void Store::delete_capture(std::int64_t id) {

@@ -9,7 +9,7 @@ SECTION = "devel"
 LICENSE = "CLOSED"
 CVE_PRODUCT = "knoblab"
 
-DEPENDS = "ceres-solver comedilib libeigen libgpiod libmodbus nlohmann-json plplot sqlite3 zlib"
+DEPENDS = "ceres-solver comedilib hdf5 libeigen libgpiod libmodbus nlohmann-json openssl plplot sqlite3 zlib"
 
 PV = "0.1.0+git"
 

@@ -1,7 +1,7 @@
 SUMMARY = "Scientific plotting library"
 DESCRIPTION = "PLplot draws 2D and 3D scientific plots. Built here with its C \
-               library and the cairo devices only (pngcairo, svgcairo), which \
-               knoblab's fit and discrepancy reports use."
+               library and the cairo devices only (pdfcairo, pngcairo, svgcairo), \
+               which knoblab's fit and discrepancy reports use."
 HOMEPAGE = "https://plplot.sourceforge.net/"
 BUGTRACKER = "https://sourceforge.net/p/plplot/bugs/"
 SECTION = "libs"
@@ -22,7 +22,7 @@ inherit cmake pkgconfig
 # time-scale tables) from plplot-native, as if from a native build directory.
 EXTRA_OECMAKE = "-DDEFAULT_NO_BINDINGS=ON -DDEFAULT_NO_DEVICES=ON -DENABLE_DYNDRIVERS=OFF \
                  -DBUILD_TEST=OFF -DBUILD_DOC=OFF -DPREBUILD_DIST=OFF"
-EXTRA_OECMAKE:append:class-target = " -DPLD_pngcairo=ON -DPLD_svgcairo=ON"
+EXTRA_OECMAKE:append:class-target = " -DPLD_pdfcairo=ON -DPLD_pngcairo=ON -DPLD_svgcairo=ON"
 EXTRA_OECMAKE:append:class-target = " -DCMAKE_NATIVE_BINARY_DIR=${WORKDIR}/native-generators"
 
 do_configure:prepend:class-target() {

@@ -21,12 +21,16 @@
 #pragma once
 
 #include <limits>
+#include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "knoblab/discovery/effects.hpp"
 #include "knoblab/fit/fit_data.hpp"
+#include "knoblab/fit/knob_fit.hpp"
+#include "knoblab/fit/run_hooks.hpp"
 
 namespace knoblab::discovery {
 
@@ -42,6 +46,10 @@ struct DiscrepancyOptions {
   double min_reported_gain = 0.20;
   std::size_t max_findings = 4;
   std::vector<EffectId> effects;    // candidates; empty: every implemented one
+  // Progress ("fitting the base model", "trying candidates, round N" k of
+  // n, "residual tests") and cancellation, checked in the base fit's Ceres
+  // iterations and between candidates: discover() throws fit::Cancelled.
+  fit::RunHooks hooks;
 };
 
 using Params = std::vector<std::pair<std::string, double>>;
@@ -101,8 +109,26 @@ struct ResidualTrace {
   std::size_t size() const { return t.size(); }
 };
 
+// The final model as a knob a simulator or renderer takes: Eq. 6 with the
+// base fit's stick band, and each kept effect with the parameters a finding
+// reports, under the effect table's names (model/effect_table.hpp), without
+// the values derived beside them: what `knoblab simulate --effects` takes. Detents with a
+// negative amplitude are turned by half a period (A > 0, S + π, odd
+// harmonics negated): the same torque, and |A| as Eq. 14 renders it.
+struct EffectTerm {
+  EffectId effect{};
+  Params params;
+};
+struct FinalKnob {
+  std::vector<double> params;  // Eq. 6, fit order (model::kThesisParamNames)
+  bool detents = false;        // the detent term is fitted (else A = 0)
+  std::optional<fit::StickBand> stick;
+  std::vector<EffectTerm> effects;
+};
+
 struct DiscrepancyResult {
   ModelSummary base, final_model;
+  FinalKnob final_knob;  // final_model's terms
   std::vector<Finding> findings;  // empty: nothing is missing
   // Found, but together under min_reported_gain: not in the final model;
   // the held-out RMS with them added (NaN when there are none).
@@ -129,7 +155,8 @@ struct DiscrepancyResult {
 // The effects discover() can fit today.
 std::vector<EffectId> implemented_effects();
 
-// Throws fit::FitDataError when the data cannot identify the base model.
+// Throws fit::FitDataError when the data cannot identify the base model,
+// fit::Cancelled when opt.hooks says so.
 DiscrepancyResult discover(const fit::FitData& data, const DiscrepancyOptions& opt = {});
 
 // The same, trained on the whole of `data` and scored on another recording
@@ -141,6 +168,12 @@ DiscrepancyResult discover(const fit::FitData& data, const fit::FitData& heldout
 
 // {"base": …, "findings": […], "final": …} with the names docs/discrepancy.md fixes.
 std::string to_json(const DiscrepancyResult& r, int indent = 2);
+
+// The final model as a model file (docs/discrepancy.md, "Model file"):
+// thesis6 params and stick, "effects", and "render", the base reduced to
+// Eq. 14 over the captured velocities `omega` as knoblab fit
+// --render-model reduces a fit. `input` names the capture in "source".
+std::string model_file_json(const DiscrepancyResult& r, std::span<const double> omega, const std::string& input);
 
 // When the base and the final model do not describe the same held-out rows,
 // one sentence giving both held-out RMS on the rows both describe;

@@ -39,6 +39,7 @@
 #include <vector>
 
 #include "knoblab/fit/fit_data.hpp"
+#include "knoblab/fit/run_hooks.hpp"
 #include "knoblab/model/models.hpp"
 
 namespace knoblab::fit {
@@ -68,6 +69,9 @@ struct FitOptions {
   std::optional<std::vector<double>> start;  // skip the search; full parameter vector
   int max_iterations = 100;
   int threads = 2;
+  // Progress ("searching detents", "fitting", "stick band", "outliers",
+  // "intervals") and cancellation: fit_knob throws Cancelled.
+  RunHooks hooks;
 };
 
 // Karnopp stick band (Eq. 7), SI units.
@@ -119,7 +123,8 @@ struct FitResult {
   std::size_t index(std::string_view name) const;
 };
 
-// Throws FitDataError when the data cannot identify the model.
+// Throws FitDataError when the data cannot identify the model, Cancelled
+// when opt.hooks says so.
 FitResult fit_knob(const FitData& data, const FitOptions& opt = {});
 
 // The fitted Eq. 6 model (render4 maps onto it with C = 0, B− = B+ = B).

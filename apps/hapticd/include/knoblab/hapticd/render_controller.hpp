@@ -1,6 +1,7 @@
 // Render mode: the knob feels like the rendering model of thesis Eq. 14 —
 // virtual-mass inertia (§3.3), damping, detents — plus the optional Karnopp
-// stick band (Eq. 7). Velocity is the front end's rendering filter (the
+// stick band (Eq. 7) and the effect library's renderable terms (a new set
+// fades out the old one, then in, each over half the ramp). Velocity is the front end's rendering filter (the
 // 10th-order Butterworth of §1.2.2 at 500 Hz, "Low Pass 1"), τ_acc goes
 // through the 3-sample box ("Low Pass 2").
 // Construction allocates; update() and set_params() never do.
@@ -50,6 +51,9 @@ class RenderController {
   int ramp_cycles_;
   RenderParams target_{};
   ParamRamp M_, B_, A_, f_;  // f = detents per revolution = 1/P (0 = none)
+  model::EffectSet<double> effects_{}, next_effects_{};
+  bool effects_pending_ = false;  // next_effects_ waits for effects_ to fade out
+  ParamRamp effects_gain_{1.0};
   model::BoxFilter3 acc_box_;
   VirtualMass vm_;
   bool started_ = false;  // false: the next update places the virtual mass at the knob

@@ -1,9 +1,12 @@
 // What the renderer renders: the rendering model of thesis Eq. 14 with the
-// optional Karnopp stick band (Eq. 7), the virtual-mass coupling of §3.3 and
-// prototyper tiles by id. SI units.
+// optional Karnopp stick band (Eq. 7), the effect library's renderable terms
+// (model/effect_set.hpp), the virtual-mass coupling of §3.3 and prototyper
+// tiles by id. SI units.
 #pragma once
 
 #include <string>
+
+#include "knoblab/model/effect_set.hpp"
 
 namespace knoblab::hapticd {
 
@@ -15,6 +18,8 @@ struct RenderParams {
   // Karnopp stick band; needs the torque sensor to know what the hand applies.
   bool stick = false;
   double dv = 0.0, D_neg = 0.0, D_pos = 0.0;
+  // Beyond Eq. 14: what discrepancy discovery found (load_model's "effects").
+  model::EffectSet<double> effects;
   // Virtual-mass coupling (§3.3). The thesis prints K_vm = 12 000 and
   // B_vm = 88 "Nm/rad"; only mN·m units make a stable, felt-but-stiff
   // coupling with its masses, so 12 N·m/rad and 0.088 N·m·s/rad.

@@ -9,6 +9,11 @@
 // row's SampleFlag bits as an unsigned integer. Whitespace around
 // fields, CRLF line ends, a UTF-8 BOM and trailing empty lines are tolerated;
 // everything else that is off is a CsvError naming line and column.
+//
+// A `# kind: static-map` line makes the file a static map (static_map.hpp):
+// columns theta and torque only, theta strictly increasing within one
+// revolution. read_recording gives either kind; read_csv refuses a static
+// map, saying what takes one.
 #pragma once
 
 #include <cstddef>
@@ -17,8 +22,10 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <variant>
 
 #include "knoblab/interchange/capture.hpp"
+#include "knoblab/interchange/static_map.hpp"
 
 namespace knoblab::interchange {
 
@@ -45,9 +52,15 @@ class CsvError : public std::runtime_error {
   std::string reason_;
 };
 
-// Parse a capture; source_name only labels error messages.
+// Parse a capture; source_name only labels error messages. A static map is
+// a CsvError at its kind line.
 Capture parse_csv(std::istream& in, std::string_view source_name);
 Capture read_csv(const std::filesystem::path& path);
+
+// Either kind of file: a recording over time or a static map.
+using Recording = std::variant<Capture, StaticMap>;
+Recording parse_recording(std::istream& in, std::string_view source_name);
+Recording read_recording(const std::filesystem::path& path);
 
 // Writes metadata, header and rows (ω, α only when not derived; flags only
 // when some row has a flag set: all-zero flags read back the same without
@@ -62,5 +75,10 @@ void write_csv(const Capture& capture, std::ostream& out);
 // crash leaves either the old file or the complete new one, never a part.
 // I/O failures throw std::system_error; the temp file is removed.
 void write_csv(const Capture& capture, const std::filesystem::path& path);
+
+// A static map: the kind line, its metadata, then theta,torque rows; the
+// same guarantees as write_csv. Metadata may not hold a 'kind' key.
+void write_static_map(const StaticMap& map, std::ostream& out);
+void write_static_map(const StaticMap& map, const std::filesystem::path& path);
 
 }  // namespace knoblab::interchange

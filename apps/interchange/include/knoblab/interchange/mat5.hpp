@@ -1,11 +1,13 @@
-// Reading MATLAB MAT-files, level 5 (what save -v6 and save -v7 write, and
-// scipy.io.savemat): outside recordings arrive this way. Numeric arrays and
-// cell arrays are read; structs, sparse, complex and objects are listed but
-// their contents are not. MAT v7.3 (HDF5) files are refused.
+// Reading MATLAB MAT-files: level 5 (what save -v6 and save -v7 write, and
+// scipy.io.savemat) and v7.3 (save -v7.3: HDF5, read through libhdf5).
+// Outside recordings arrive this way. Numeric arrays and cell arrays are
+// read; structs, sparse, complex and objects are listed but their contents
+// are not. Both versions give the same MatArray for the same variable.
 //
 // The reader trusts nothing in the file: every size is checked against the
 // bytes present, nesting and inflated sizes are capped, and anything off is
-// a MatError naming the file offset.
+// a MatError naming the file offset (v5) or the variable and cell (v7.3).
+// The NumPy readers (npy.hpp) give MatArrays and MatErrors too.
 #pragma once
 
 #include <cstddef>
@@ -57,7 +59,8 @@ struct MatLimits {
 
 class MatError : public std::runtime_error {
  public:
-  // what() is "source: offset N: reason" ("source: reason" for the whole file).
+  // what() is "source: offset N: reason" ("source: reason" for the whole file
+  // and for v7.3 files, whose reason names the variable).
   MatError(std::string source, std::size_t offset, std::string reason, bool whole_file = false);
   std::size_t offset() const { return offset_; }
   const std::string& reason() const { return reason_; }
@@ -67,7 +70,8 @@ class MatError : public std::runtime_error {
   std::string reason_;
 };
 
-// Every named top-level variable, in file order.
+// Every named top-level variable, in file order (v7.3: in name order, as
+// HDF5 lists them).
 std::vector<MatArray> parse_mat(std::string_view bytes, std::string_view source_name,
                                 const MatLimits& limits = {});
 std::vector<MatArray> read_mat(const std::filesystem::path& path, const MatLimits& limits = {});

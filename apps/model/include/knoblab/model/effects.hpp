@@ -24,6 +24,7 @@ namespace knoblab::model {
 template <typename T>
 struct Offset {
   T tau0{};  // N·m
+  bool operator==(const Offset&) const = default;
   T torque() const { return tau0; }
 };
 
@@ -32,6 +33,7 @@ template <typename T>
 struct OncePerRev {
   T A{};      // N·m
   T phase{};  // rad
+  bool operator==(const OncePerRev&) const = default;
   T torque(const T& theta) const {
     using std::sin;
     return A * sin(theta + phase);
@@ -44,6 +46,7 @@ template <typename T>
 struct Stribeck {
   T excess{};   // N·m, static_excess_Nm
   T v_s{1.0};   // rad/s, stribeck_velocity_rad_s
+  bool operator==(const Stribeck&) const = default;
   T torque(const T& omega) const {
     using std::exp;
     if (omega == T(0)) return T(0);
@@ -58,6 +61,7 @@ template <typename T>
 struct PowerDamping {
   T c{};       // N·m/(rad/s)^p
   T p{2.0};    // exponent
+  bool operator==(const PowerDamping&) const = default;
   T torque(const T& omega) const {
     using std::abs;
     using std::pow;

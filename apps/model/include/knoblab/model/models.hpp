@@ -1,13 +1,15 @@
 // The knob models of the thesis as compositions of the torque terms.
 //   ThesisModel  — Eq. 6: inertia + asymmetric Coulomb/viscous + detents
 //   RenderModel  — Eq. 14: inertia + viscous + detents (no phase), with an
-//                  optional Karnopp stick band (Eq. 7)
+//                  optional Karnopp stick band (Eq. 7) and the effect
+//                  library's renderable terms (effect_set.hpp)
 #pragma once
 
 #include <array>
 #include <cstddef>
 #include <string_view>
 
+#include "knoblab/model/effect_set.hpp"
 #include "knoblab/model/terms.hpp"
 
 namespace knoblab::model {
@@ -56,6 +58,7 @@ struct RenderModel {
   Detents<T> detents;  // S stays 0 when rendering (Eq. 14)
   bool stick_enabled = false;
   KarnoppStick<T> stick;
+  EffectSet<T> effects;  // detent_shape's harmonics: effects.shape_detents(detents)
 
   CoulombViscous<T> sliding() const { return {T(0), B_vel, T(0), B_vel}; }
 
@@ -63,11 +66,14 @@ struct RenderModel {
   // reading, or 0 where there is none). It only matters in the stick band,
   // where friction holds the knob against what the other terms leave over:
   // in the sensor convention τ = acc + vel + pos, so vel = τ − acc − pos.
+  // The effects' position torques count with the detents; their friction
+  // terms, like the viscous one, only outside the band.
   T torque(const Kinematics<T>& k, const T& tau_applied = T(0)) const {
-    const T pos = detents.torque(k.theta);
+    const T pos = detents.torque(k.theta) + effects.held(k.theta, k.omega);
     const T acc = inertia.torque(k.alpha);
-    const T vel = stick_enabled ? stick.torque(k.omega, tau_applied - pos - acc, sliding())
-                                : sliding().torque(k.omega);
+    const T vel = stick_enabled && stick.sticking(k.omega)
+                      ? stick.torque(k.omega, tau_applied - pos - acc, sliding())
+                      : sliding().torque(k.omega) + effects.sliding(k.omega);
     return acc + vel + pos;
   }
 };

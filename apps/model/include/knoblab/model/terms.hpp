@@ -97,6 +97,7 @@ struct Detents {
   std::array<T, kMaxHarmonic + 1> a{};  // a[k], b[k] for k >= 2; 0, 1 unused
   std::array<T, kMaxHarmonic + 1> b{};
   std::size_t harmonics = 1;  // highest harmonic evaluated (1 = pure sine)
+  bool operator==(const Detents&) const = default;
 
   T phase(const T& theta) const { return theta / P + S; }
   T torque(const T& theta) const {
@@ -113,6 +114,21 @@ struct Detents {
   }
 };
 
+// The same detent torque spelled with A >= 0 and S in (-pi, pi], so equal
+// terms print alike: A -> -A with S -> S + pi leaves A*sin(theta/P + S) as it
+// was, and multiplies harmonic k by (-1)^k, which the harmonics undo.
+inline Detents<double> canonical(Detents<double> d) {
+  constexpr double kPi = 3.14159265358979323846;
+  if (d.A < 0) {
+    d.A = -d.A;
+    d.S += kPi;
+    for (std::size_t k = 3; k <= Detents<double>::kMaxHarmonic; k += 2) d.a[k] = -d.a[k], d.b[k] = -d.b[k];
+  }
+  d.S = std::remainder(d.S, 2 * kPi);
+  if (d.S <= -kPi) d.S += 2 * kPi;
+  return d;
+}
+
 // Detents per revolution of a detent period P.
 inline double cycles_per_rev(const Detents<double>& d) { return 1.0 / d.P; }
 
@@ -120,6 +136,7 @@ inline double cycles_per_rev(const Detents<double>& d) { return 1.0 / d.P; }
 template <typename T>
 struct Spring {
   T K{}, theta0{}, K3{};
+  bool operator==(const Spring&) const = default;
   T torque(const T& theta) const {
     const T d = theta - theta0;
     return K * d + K3 * d * d * d;
@@ -132,6 +149,7 @@ template <typename T>
 struct Walls {
   T lo{-1e9}, hi{1e9};  // rad
   T K{}, B{};           // N·m/rad, N·m·s/rad
+  bool operator==(const Walls&) const = default;
   T torque(const T& theta, const T& omega) const {
     if (theta > hi) return K * (theta - hi) + B * omega;
     if (theta < lo) return K * (theta - lo) + B * omega;

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -53,6 +54,11 @@ class CaptureWriter {
   // Best effort, for when the capture cannot go on: flush, mark 'incomplete'
   // with `reason`; if the batch cannot be saved, mark it without the batch.
   void abandon(std::string_view reason = "abandoned by its writer");
+  // For a run cancelled before its end: removes the capture with what is
+  // committed of it, and the knob begin_capture made for it when no other
+  // capture uses it, in one transaction, so nothing of it stays. A
+  // StoreError leaves the writer open (abandon() still marks it).
+  void discard();
 
   std::int64_t committed() const { return committed_; }
   std::int64_t appended() const { return committed_ + static_cast<std::int64_t>(batch_.size()); }
@@ -60,7 +66,7 @@ class CaptureWriter {
  private:
   friend class Store;
   CaptureWriter(std::shared_ptr<sqlite::Connection> db, std::int64_t id, bool has_command,
-                WriterOptions options);
+                WriterOptions options, std::optional<std::int64_t> created_knob);
   void insert_batch();
   void committed_batch();
   void close(const char* status, std::string_view reason);
@@ -75,6 +81,7 @@ class CaptureWriter {
   std::int64_t committed_ = 0;
   double last_t_ = 0;
   bool closed_ = false;
+  std::optional<std::int64_t> created_knob_;  // made by begin_capture for this capture
 };
 
 }  // namespace knoblab::store

@@ -1,5 +1,6 @@
 // The knoblab database: one sqlite file in WAL mode holding knobs, captures
-// with their samples, fits with their report files, and discrepancy results.
+// with their samples, and results - fits and discrepancy results - with
+// their report files and provenance (docs/store.md).
 // Typical use:
 //
 //   auto store = Store::open("knoblab.db");
@@ -113,12 +114,15 @@ class Store {
   // Refuses a capture still 'recording'.
   void delete_capture(std::int64_t id);
 
-  // A fit of a capture and its report files, in one transaction: on any
-  // error (unknown capture, invalid JSON, a bad or duplicate file name)
-  // nothing is left behind, and a crash never leaves a fit without its files.
+  // A fit of a capture, its report files and its provenance, in one
+  // transaction: on any error (unknown capture, invalid JSON, a bad or
+  // duplicate file name, a provenance field out of shape) nothing is left
+  // behind, and a crash never leaves a fit without its files. knoblab's
+  // commands always give the provenance; none leaves its columns NULL.
   std::int64_t insert_fit(std::int64_t capture_id, std::string_view model,
                           std::string_view params_json, std::string_view result_json = "{}",
-                          std::span<const FitFile> files = {});
+                          std::span<const FitFile> files = {},
+                          const std::optional<Provenance>& provenance = std::nullopt);
   std::vector<FitInfo> list_fits(std::int64_t capture_id);  // by id
   std::vector<FitInfo> list_all_fits();                     // of every capture, by id
   std::optional<FitInfo> fit_info(std::int64_t fit_id);
@@ -132,12 +136,21 @@ class Store {
   std::vector<FitFile> load_fit_files(std::int64_t fit_id);
 
   // A discrepancy result of a capture (discovery::to_json), with the capture
-  // held out whole when there was one. Throws StoreError, storing nothing,
-  // for an unknown capture or held-out capture and for invalid JSON.
+  // held out whole when there was one, its report files and its provenance,
+  // in one transaction as insert_fit. Throws StoreError, storing nothing,
+  // for an unknown capture or held-out capture, invalid JSON, a bad file
+  // name or provenance.
   std::int64_t insert_discrepancy(std::int64_t capture_id, std::string_view result_json,
-                                  std::optional<std::int64_t> heldout_capture_id = std::nullopt);
+                                  std::optional<std::int64_t> heldout_capture_id = std::nullopt,
+                                  std::span<const ResultFile> files = {},
+                                  const std::optional<Provenance>& provenance = std::nullopt);
   std::vector<DiscrepancyInfo> list_discrepancies(std::int64_t capture_id);  // by id
+  std::vector<DiscrepancyInfo> list_all_discrepancies();                     // of every capture, by id
   std::optional<DiscrepancyInfo> discrepancy_info(std::int64_t id);
+  // A discrepancy result's files by name (empty for none or an unknown id);
+  // all of them from one snapshot (throws StoreError for an unknown id).
+  std::vector<ResultFileInfo> list_discrepancy_files(std::int64_t id);
+  std::vector<ResultFile> load_discrepancy_files(std::int64_t id);
 
   // Biometrics recorded beside a capture, appended in one transaction.
   void append_biometrics(std::int64_t capture_id, std::span<const BiometricSample> samples);

@@ -63,10 +63,20 @@ struct KnobInfo {
   std::string name, description, created_at;
 };
 
+// Where a stored result came from (schema 7); its created_at says when.
+struct Provenance {
+  std::string tool_version;    // the knoblab that made it (knoblab/version.hpp), not empty
+  std::string input_sha256;    // 64 lowercase hex digits: the analysed capture's
+                               // interchange::samples_sha256
+  std::string options = "{}";  // JSON object: the options it ran with
+};
+
 struct FitInfo {
   std::int64_t id = 0;
   std::int64_t capture_id = 0;
   std::string model, params, result, created_at;
+  std::optional<Provenance> provenance;  // none: stored before schema 7 or without one
+  std::int64_t file_count = 0;           // report files stored with it
 };
 
 // A discrepancy run's result (docs/discrepancy.md's JSON) as stored.
@@ -79,19 +89,23 @@ struct DiscrepancyInfo {
   std::optional<std::int64_t> heldout_capture_id;
   std::string result;      // JSON, byte for byte as inserted
   std::string created_at;  // ISO 8601 UTC
+  std::optional<Provenance> provenance;  // none: stored before schema 7 or without one
+  std::int64_t file_count = 0;           // report files stored with it
 };
 
-// One file of a fit's report (a plot, fit.json, the render model), stored
-// byte for byte. name is a plain file name: not empty, no '/', no NUL, not
-// "." or "..", unique within its fit.
-struct FitFile {
+// One file of a result's report (a plot, fit.json, the render model,
+// summary.md), stored byte for byte. name is a plain file name: not empty,
+// no '/', no NUL, not "." or "..", unique within its result.
+struct ResultFile {
   std::string name;
   std::vector<std::uint8_t> bytes;
 };
+using FitFile = ResultFile;
 
-struct FitFileInfo {
+struct ResultFileInfo {
   std::string name;
   std::int64_t size = 0;  // bytes
 };
+using FitFileInfo = ResultFileInfo;
 
 }  // namespace knoblab::store
