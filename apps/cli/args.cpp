@@ -138,11 +138,12 @@ Args::Args(const CommandSpec& spec, const std::vector<std::string>& argv) : spec
                      " in a store say --capture " + positionals_[0] + " --db FILE.sqlite");
 }
 
-long long parse_id(const std::string& what, const std::string& text) {
+long long parse_id(const std::string& what, const std::string& text, const std::string& noun) {
   long long id = 0;
   auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), id);
   if (ec != std::errc() || p != text.data() + text.size() || id <= 0)
-    throw UsageError(what + " must be an id (a positive integer), got '" + text + "'");
+    throw UsageError(what + " must be " + (noun.empty() ? "an" : "a " + noun) + " id (a positive integer), got '" +
+                     text + "'");
   return id;
 }
 

@@ -57,8 +57,9 @@ class Args {
 };
 
 // A store id (capture, fit, result): a positive integer, else a UsageError
-// naming `what` ("--capture", "CAPTURE", …).
-long long parse_id(const std::string& what, const std::string& text);
+// naming `what` ("--capture", "CAPTURE", …) and, when given, the kind of id
+// ("must be a fit id").
+long long parse_id(const std::string& what, const std::string& text, const std::string& noun = "");
 
 // The metavar --help shows for an option: its own, else the usual one for its name.
 std::string metavar(const OptionSpec& option);

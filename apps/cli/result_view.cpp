@@ -1,6 +1,5 @@
 #include "result_view.hpp"
 
-#include <charconv>
 #include <cstdio>
 
 #include "args.hpp"
@@ -33,11 +32,7 @@ nlohmann::json record(const char* kind, std::int64_t id, std::int64_t capture_id
 }  // namespace
 
 std::int64_t id_arg(const std::string& what, const std::string& noun, const std::string& text) {
-  std::int64_t id = 0;
-  auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), id);
-  if (ec != std::errc() || p != text.data() + text.size() || id <= 0)
-    throw UsageError(what + " must be a " + noun + " id (a positive integer), got '" + text + "'");
-  return id;
+  return parse_id(what, text, noun);
 }
 
 std::optional<double> number_at(const nlohmann::json& result, std::initializer_list<const char*> keys) {
