@@ -7,6 +7,7 @@
 #include "commands.hpp"
 #include "figure_args.hpp"
 #include "fit_run.hpp"
+#include "model_fit_run.hpp"
 #include "progress.hpp"
 #include "provenance.hpp"
 #include "result_files.hpp"
@@ -18,7 +19,7 @@ namespace knoblab::cli {
 
 const CommandSpec kFitSpec{
     "fit",
-    "(FILE.csv | --capture ID --db FILE.sqlite) [--model thesis6|render4] [--json OUT.json|-]\n"
+    "(FILE.csv | --capture ID --db FILE.sqlite) [--model thesis6|render4|MODEL.json] [--json OUT.json|-]\n"
     "       [--report DIR [--format pdf,svg,png] [--size 160x100mm] [--dpi 300]]\n"
     "       [--render-model OUT.json]",
     "Fit the knob model (thesis Eq. 6 with the Eq. 7 stick band) to a capture.\n"
@@ -27,10 +28,13 @@ const CommandSpec kFitSpec{
     "figures as PDF, SVG and PNG, each with its data as CSV (docs/figures.md). A capture\n"
     "from the store gets its fit stored beside it, with the report files and its provenance\n"
     "(knoblab fits, knoblab results). Ctrl-C cancels it: nothing is written or stored,\n"
-    "exit status 130.",
+    "exit status 130.\n"
+    "--model MODEL.json fits a model file's terms instead (discrepancy --model-out: Eq. 6\n"
+    "and the effects found), from its values, and --json writes the refitted model file.",
     with_figure_options({{"capture", true, "capture id in the store (instead of FILE.csv)"},
      {"db", true, "sqlite store"},
-     {"model", true, "thesis6 (Eq. 6, default) or render4 (Eq. 14: M, B, A, P)", "thesis6|render4"},
+     {"model", true, "thesis6 (Eq. 6, default), render4 (Eq. 14: M, B, A, P) or a model file's terms",
+      "thesis6|render4|MODEL.json"},
      {"json", true, "write the fit as JSON (docs/fit.md); '-' for stdout"},
      {"report", true, "directory for the report figures and fit.json"},
      {"render-model", true, "write the render model file hapticd loads (--model)"},
@@ -42,14 +46,18 @@ const CommandSpec kFitSpec{
     0, 1, true,
     {"knoblab simulate --knob moderate-detents --out knob.csv && knoblab fit knob.csv",
      "knoblab fit --capture 1 --db lab.sqlite --json fit.json --render-model knob-model.json",
-     "knoblab fit knob.csv --report figures/ --format pdf,png --size 90x60mm --dpi 600"}};
+     "knoblab fit knob.csv --report figures/ --format pdf,png --size 90x60mm --dpi 600",
+     "knoblab fit again.csv --model knob-model.json --json refitted-model.json"}};
 
 int run_fit(const Args& args) {
   const fit::PrepOptions prep = prep_options(args);
   fit::FitOptions opt;
   if (auto m = args.get("model")) {
     const auto kind = fit::parse_model(*m);
-    if (!kind) throw UsageError("--model must be thesis6 or render4, got '" + *m + "'");
+    if (!kind && std::filesystem::is_regular_file(*m)) return run_fit_model_file(args, *m);
+    if (!kind)
+      throw UsageError("--model must be thesis6, render4 or a model file (discrepancy --model-out); "
+                       "no file '" + *m + "'");
     opt.model = *kind;
   }
   if (auto d = args.get("detents")) {

@@ -185,3 +185,68 @@ TEST(Loop, AModelWithEffectsTheRendererCannotRenderIsRefusedBeforeSending) {
 
 }  // namespace
 }  // namespace knoblab::test
+
+namespace knoblab::test {
+namespace {
+
+TEST(Loop, DiscrepancysModelFileIsFittedToAnotherCaptureOfTheKnobAndSimulatesAgain) {
+  ScratchDir dir;
+  const auto at = [&](const char* name) { return (dir / name).string(); };
+  const std::string stribeck = "stribeck:static_excess_Nm=0.004,stribeck_velocity_rad_s=0.5";
+  run_ok({"simulate", "--knob", "moderate-detents", "--seconds", "8", "--effects", stribeck, "--out", at("a.csv")});
+  run_ok({"discrepancy", "--input", at("a.csv"), "--model-out", at("model.json")});
+  run_ok({"simulate", "--knob", "moderate-detents", "--seconds", "8", "--seed", "5", "--effects", stribeck, "--out",
+          at("b.csv")});
+  const RunResult r = run_knoblab({"fit", at("b.csv"), "--model", at("model.json"), "--json", at("refit.json")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("stribeck.static_excess_Nm"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("mN·m"), std::string::npos) << r.out;
+
+  // The refitted Stribeck term: the first capture's finding inside its
+  // interval (two recordings of one knob agree), and near the truth. Not the
+  // truth inside it: discovery reads the excess about 7 % high on this rig
+  // (4.27–4.30 mN·m over seeds 5–7, and 4.27 in discrepancy's own finding),
+  // a bias both share, larger than an 8 s capture's interval.
+  const json refit = read_json(at("refit.json"));
+  const json model = read_json(at("model.json"));
+  const json* found = nullptr;
+  const json* first = nullptr;
+  std::size_t e = 0;
+  for (std::size_t i = 0; i < refit.at("effects").size(); ++i)
+    if (refit.at("effects")[i].at("effect") == "stribeck") found = &refit.at("effects")[i], e = i;
+  for (const json& f : model.at("effects"))
+    if (f.at("effect") == "stribeck") first = &f;
+  ASSERT_NE(found, nullptr) << refit.dump(1);
+  ASSERT_NE(first, nullptr) << model.dump(1);
+  const json& ci = refit.at("ci95").at("effects")[e].at("params");
+  for (const auto& [name, truth] : {std::pair<std::string, double>{"static_excess_Nm", 0.004},
+                                    {"stribeck_velocity_rad_s", 0.5}}) {
+    const double v = found->at("params").at(name), half = ci.at(name), was = first->at("params").at(name);
+    EXPECT_LE(std::abs(v - was), half) << name << " " << v << " ± " << half << ", first capture " << was;
+    EXPECT_NEAR(v, truth, 0.1 * truth) << name;
+  }
+  EXPECT_EQ(refit.at("source").at("model"), at("model.json"));
+  // A model file again: simulate takes it.
+  run_ok({"simulate", "--params", at("refit.json"), "--seconds", "2", "--out", at("c.csv")});
+  EXPECT_NE(read_file(at("c.csv")).find("# effects: stribeck:"), std::string::npos);
+}
+
+TEST(Loop, FittingAModelFileRefusesTheThesisFitsOptionsAndAMissingFile) {
+  ScratchDir dir;
+  const auto at = [&](const char* name) { return (dir / name).string(); };
+  run_ok({"simulate", "--knob", "moderate-detents", "--seconds", "2", "--out", at("a.csv")});
+  write_file(at("model.json"), R"({"model": "thesis6", "params": {"M_acc": 5e-5}, "effects": []})");
+  const RunResult report = run_knoblab({"fit", at("a.csv"), "--model", at("model.json"), "--report", at("r")});
+  EXPECT_EQ(report.exit_code, 2);
+  EXPECT_NE(report.err.find("--report is for the thesis model"), std::string::npos) << report.err;
+  const RunResult missing = run_knoblab({"fit", at("a.csv"), "--model", at("nosuch.json")});
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("no file"), std::string::npos) << missing.err;
+  write_file(at("bad.json"), R"({"params": {"M_acc": 5e-5}, "effects": [{"effect": "stribeck", "params": {}}]})");
+  const RunResult bad = run_knoblab({"fit", at("a.csv"), "--model", at("bad.json")});
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("bad.json: effects[0]"), std::string::npos) << bad.err;
+}
+
+}  // namespace
+}  // namespace knoblab::test

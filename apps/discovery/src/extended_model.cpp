@@ -257,6 +257,36 @@ FitReport fit_extended(ExtendedModel& m, const fit::FitData& d, std::span<const 
   return out;
 }
 
+RowsJacobian residual_jacobian(const ExtendedModel& m, const fit::FitData& d, std::span<const std::size_t> rows) {
+  std::vector<double> p = m.flat();
+  RowsJacobian out;
+  out.n = p.size();
+  if (p.size() > static_cast<std::size_t>(kMaxParams))
+    throw std::invalid_argument("discrepancy: too many effect parameters in one model");
+  p.resize(kMaxParams, 0.0);
+  const Layout L = layout_of(m);
+  const std::vector<RowInputs> in = row_inputs(d, rows, m);
+  std::vector<double> torque(rows.size());
+  for (std::size_t j = 0; j < rows.size(); ++j) torque[j] = d.torque[rows[j]];
+  std::vector<double> r(kChunk), J(kChunk * static_cast<std::size_t>(kMaxParams));
+  for (std::size_t s = 0; s < in.size(); s += kChunk) {
+    const std::size_t len = std::min(kChunk, in.size() - s);
+    const ceres::AutoDiffCostFunction<ChunkCost, ceres::DYNAMIC, kMaxParams> cost(
+        new ChunkCost{&L, std::span(in).subspan(s, len), std::span<const double>(torque).subspan(s, len)},
+        static_cast<int>(len));
+    const double* params[] = {p.data()};
+    double* jac[] = {J.data()};
+    if (!cost.Evaluate(params, r.data(), jac)) throw std::runtime_error("discrepancy: the model is not finite");
+    for (std::size_t j = 0; j < len; ++j) {
+      if (!in[s + j].described) continue;
+      out.residuals.push_back(r[j]);
+      const double* row = J.data() + j * static_cast<std::size_t>(kMaxParams);
+      out.jacobian.insert(out.jacobian.end(), row, row + out.n);
+    }
+  }
+  return out;
+}
+
 std::vector<double> residuals(const ExtendedModel& m, const fit::FitData& d,
                               std::span<const std::size_t> rows) {
   const Layout L = layout_of(m);

@@ -181,6 +181,15 @@ struct FitReport {
 FitReport fit_extended(ExtendedModel& m, const fit::FitData& d, std::span<const std::size_t> rows,
                        int max_iterations = 50);
 
+// Residuals (model − measured, as the fit's cost) and their Jacobian
+// (row-major, rows × the flat vector's size) over the rows of `rows` the model describes, in time
+// order: what fit::covariance_from_rows takes for the intervals.
+struct RowsJacobian {
+  std::vector<double> residuals, jacobian;
+  std::size_t n = 0;  // columns: m.flat().size()
+};
+RowsJacobian residual_jacobian(const ExtendedModel& m, const fit::FitData& d, std::span<const std::size_t> rows);
+
 // Residuals (measured − model) at the rows; NaN where the model does not
 // describe the row (RowInputs::described) and, under compliance, the knob
 // does not stand either (RowInputs::wound).

@@ -3,7 +3,9 @@
 // file that carries them (docs/discrepancy.md, "Model file").
 #include "final_knob.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <string>
@@ -21,11 +23,17 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// One effect's parameters as discrepancy reports them (the effect table's
-// names), without the values derived beside them: the parameters
-// `knoblab simulate --effects` and a model file take (as
-// model::effect_from_params reads them: no alternatives beside the
-// parameters they replace).
+// a3_Nm, b3_Nm: a detent harmonic of odd order.
+bool odd_harmonic(const std::string& name) {
+  return name.size() > 1 && (name[0] == 'a' || name[0] == 'b') && name[1] >= '0' && name[1] <= '9' &&
+         (name[1] - '0') % 2 == 1;
+}
+
+}  // namespace
+
+// As discrepancy reports them, without what is derived beside them, and no
+// alternatives beside the parameters they replace: as
+// model::effect_from_params reads them back.
 Params settable_params(const ActiveEffect& e, const ExtendedModel& m) {
   const model::EffectRow& row = model::effect_row(e.id);
   Params out;
@@ -35,14 +43,6 @@ Params settable_params(const ActiveEffect& e, const ExtendedModel& m) {
   }
   return out;
 }
-
-// a3_Nm, b3_Nm: a detent harmonic of odd order.
-bool odd_harmonic(const std::string& name) {
-  return name.size() > 1 && (name[0] == 'a' || name[0] == 'b') && name[1] >= '0' && name[1] <= '9' &&
-         (name[1] - '0') % 2 == 1;
-}
-
-}  // namespace
 
 FinalKnob final_knob_of(const ExtendedModel& m, const std::optional<fit::StickBand>& stick) {
   FinalKnob k;
@@ -62,11 +62,78 @@ FinalKnob final_knob_of(const ExtendedModel& m, const std::optional<fit::StickBa
   return k;
 }
 
-}  // namespace detail
 
-std::string model_file_json(const DiscrepancyResult& r, std::span<const double> omega, const std::string& input) {
+ExtendedModel extended_of(const FinalKnob& k) {
+  ExtendedModel m;
+  m.base = k.params;
+  m.base.resize(model::kThesisParamCount, 0.0);
+  m.base_fitted.assign(model::kThesisParamCount, true);
+  if (!k.detents) {
+    for (const std::size_t i : {model::kA_pos, model::kP_pos, model::kS_pos}) m.base_fitted[i] = false;
+    m.base[model::kA_pos] = 0.0;
+  }
+  if (k.stick) {
+    m.stick_band = k.stick->dv;
+    m.breakaway = std::max(k.stick->D_pos, k.stick->D_neg);
+  }
+  for (const EffectTerm& t : k.effects) {
+    const model::EffectSpec spec = model::effect_from_params(effect_name(t.effect), t.params);
+    const auto v = [&](std::string_view name) { return spec.value(name); };
+    ActiveEffect e;
+    e.id = t.effect;
+    switch (t.effect) {
+      case EffectId::Offset: e.params = {v("offset_Nm")}; break;
+      case EffectId::Gravity: e.params = {v("amplitude_Nm"), v("phase_rad")}; break;
+      case EffectId::Spring:
+        e.params = {v("stiffness_Nm_per_rad"), v("cubic_Nm_per_rad3")};
+        e.setting = v("centre_rad");
+        break;
+      case EffectId::PeriodicTorque:
+        e.params = {v("amplitude_Nm"), v("period_rad") / (2 * kPi), v("phase_rad")};
+        break;
+      case EffectId::PositionFriction:
+        e.params = {v("depth_Nm"), v("period_rad") / (2 * kPi), v("phase_rad")};
+        break;
+      case EffectId::DetentShape:
+        e.params = {v("a2_Nm"), v("b2_Nm"), v("a3_Nm"), v("b3_Nm"), v("a4_Nm"), v("b4_Nm")};
+        break;
+      case EffectId::Stribeck: e.params = {v("static_excess_Nm"), v("stribeck_velocity_rad_s")}; break;
+      case EffectId::NonlinearDamping: e.params = {v("coefficient"), v("exponent")}; break;
+      case EffectId::Drift:
+        e.params = {v("rate_Nm_per_s")};
+        e.setting = v("t0_s");
+        break;
+      case EffectId::TimeDelay: e.setting = v("delay_s"); break;
+      case EffectId::Saturation: e.setting = v("limit_Nm"); break;
+      case EffectId::Backlash: e.setting = v("width_rad"); break;
+      case EffectId::Hysteresis: e.setting = v("presliding_angle_rad"); break;
+      case EffectId::Endstop:
+        e.params = {v("stiffness_Nm_per_rad")};
+        e.setting = v("position_rad");
+        break;
+      case EffectId::Compliance: {
+        // Against the knob's inertia as this model has it, as discovery
+        // reports the ringing (report_params).
+        const double J = std::abs(m.base[model::kM_acc]);
+        double k_c = v("stiffness_Nm_per_rad");
+        if (std::isnan(k_c)) k_c = J * std::pow(2 * kPi * v("frequency_hz"), 2);
+        double c = v("damping_Nm_s_per_rad");
+        if (std::isnan(c) && !std::isnan(v("zeta"))) c = 2 * v("zeta") * std::sqrt(k_c * J);
+        e.setting = k_c;
+        e.lag_s = std::isnan(c) || !(k_c > 0) ? 0.0 : c / k_c;
+        break;
+      }
+    }
+    for (const double p : e.params)
+      if (!std::isfinite(p))
+        throw std::invalid_argument(std::string(effect_name(t.effect)) + ": a parameter has no value");
+    m.effects.push_back(std::move(e));
+  }
+  return m;
+}
+
+nlohmann::ordered_json model_file_fields(const FinalKnob& k, std::span<const double> omega) {
   using nlohmann::ordered_json;
-  const FinalKnob& k = r.final_knob;
   ordered_json params = ordered_json::object();
   for (std::size_t i = 0; i < k.params.size() && i < model::kThesisParamCount; ++i)
     params[std::string(model::kThesisParamNames[i])] = k.params[i];
@@ -86,18 +153,21 @@ std::string model_file_json(const DiscrepancyResult& r, std::span<const double> 
   base.detents = k.detents;
   base.stick = k.stick;
   const ordered_json render = ordered_json::parse(fit::to_json(fit::reduce_to_render(base, omega)));
+  return {{"model", "thesis6"}, {"params", params}, {"stick", stick}, {"effects", effects},
+          {"render", render.at("params")}};
+}
+
+}  // namespace detail
+
+std::string model_file_json(const DiscrepancyResult& r, std::span<const double> omega, const std::string& input) {
+  using nlohmann::ordered_json;
+  ordered_json j = detail::model_file_fields(r.final_knob, omega);
   ordered_json findings = ordered_json::array();
   for (const Finding& f : r.findings) findings.push_back(std::string(effect_name(f.effect)));
-  const ordered_json j = {{"model", "thesis6"},
-                          {"params", params},
-                          {"stick", stick},
-                          {"effects", effects},
-                          {"render", render.at("params")},
-                          {"source",
-                           {{"command", "knoblab discrepancy"},
-                            {"input", input},
-                            {"findings", findings},
-                            {"heldout_rmse_Nm", r.final_model.heldout_rmse_Nm}}}};
+  j["source"] = {{"command", "knoblab discrepancy"},
+                 {"input", input},
+                 {"findings", findings},
+                 {"heldout_rmse_Nm", r.final_model.heldout_rmse_Nm}};
   return j.dump(2);
 }
 

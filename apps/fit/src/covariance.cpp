@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "knoblab/fit/covariance.hpp"
 #include "knoblab/fit/stats.hpp"
 #include "position_cells.hpp"
 #include "residual.hpp"
@@ -90,40 +91,6 @@ std::size_t batch_of(std::size_t j, std::size_t m) { return j * kBatches / m; }
 std::size_t batch_begin(std::size_t b, std::size_t m) { return (b * m + kBatches - 1) / kBatches; }
 
 }  // namespace
-
-CovarianceEstimate covariance_from_rows(std::vector<double> residuals,
-                                        std::vector<double> jacobian, std::size_t n,
-                                        const std::vector<bool>& fitted) {
-  const std::size_t m = residuals.size();
-  const std::vector<Eigen::Index> free = free_parameters(fitted);
-  const auto nf = static_cast<Eigen::Index>(free.size());
-  Eigen::MatrixXd jtj = Eigen::MatrixXd::Zero(nf, nf);
-  Eigen::MatrixXd batch_sums = Eigen::MatrixXd::Zero(nf, static_cast<Eigen::Index>(kBatches));
-  Eigen::VectorXd g(nf);
-  double rss = 0.0;
-  for (std::size_t i = 0; i < m; ++i) {
-    const double* J = jacobian.data() + i * n;
-    for (Eigen::Index a = 0; a < nf; ++a) g(a) = J[free[static_cast<std::size_t>(a)]];
-    jtj.selfadjointView<Eigen::Lower>().rankUpdate(g);
-    batch_sums.col(static_cast<Eigen::Index>(batch_of(i, m))) += g * residuals[i];
-    rss += residuals[i] * residuals[i];
-  }
-  jtj = jtj.selfadjointView<Eigen::Lower>();
-  CovarianceEstimate out = sandwich(jtj, batch_sums, rss, m, free, n);
-  double sd = 0.0;
-  const std::size_t stride = summary_stride(m);
-  std::size_t used = 0;
-  for (std::size_t i = 0; i < m; i += stride, ++used) {
-    const double* J = jacobian.data() + i * n;
-    double v = 0.0;
-    for (std::size_t p = 0; p < n; ++p) {
-      for (std::size_t q = 0; q < n; ++q) v += J[p] * out.covariance[p * n + q] * J[q];
-    }
-    sd += std::sqrt(std::max(0.0, v));
-  }
-  out.curve_sd_mean = used > 0 ? sd / static_cast<double>(used) : 0.0;
-  return out;
-}
 
 CovarianceEstimate covariance_from_cells(ModelKind kind, const PositionCells& cells,
                                          std::span<const std::uint32_t> rows, const double* p,
@@ -216,3 +183,47 @@ CovarianceEstimate covariance_from_cells(ModelKind kind, const PositionCells& ce
 }
 
 }  // namespace knoblab::fit::detail
+
+namespace knoblab::fit {
+
+using detail::batch_of;
+using detail::kBatches;
+using detail::free_parameters;
+using detail::sandwich;
+using detail::summary_stride;
+
+CovarianceEstimate covariance_from_rows(std::vector<double> residuals,
+                                        std::vector<double> jacobian, std::size_t n,
+                                        const std::vector<bool>& fitted) {
+  const std::size_t m = residuals.size();
+  const std::vector<Eigen::Index> free = free_parameters(fitted);
+  const auto nf = static_cast<Eigen::Index>(free.size());
+  Eigen::MatrixXd jtj = Eigen::MatrixXd::Zero(nf, nf);
+  Eigen::MatrixXd batch_sums = Eigen::MatrixXd::Zero(nf, static_cast<Eigen::Index>(kBatches));
+  Eigen::VectorXd g(nf);
+  double rss = 0.0;
+  for (std::size_t i = 0; i < m; ++i) {
+    const double* J = jacobian.data() + i * n;
+    for (Eigen::Index a = 0; a < nf; ++a) g(a) = J[free[static_cast<std::size_t>(a)]];
+    jtj.selfadjointView<Eigen::Lower>().rankUpdate(g);
+    batch_sums.col(static_cast<Eigen::Index>(batch_of(i, m))) += g * residuals[i];
+    rss += residuals[i] * residuals[i];
+  }
+  jtj = jtj.selfadjointView<Eigen::Lower>();
+  CovarianceEstimate out = sandwich(jtj, batch_sums, rss, m, free, n);
+  double sd = 0.0;
+  const std::size_t stride = summary_stride(m);
+  std::size_t used = 0;
+  for (std::size_t i = 0; i < m; i += stride, ++used) {
+    const double* J = jacobian.data() + i * n;
+    double v = 0.0;
+    for (std::size_t p = 0; p < n; ++p) {
+      for (std::size_t q = 0; q < n; ++q) v += J[p] * out.covariance[p * n + q] * J[q];
+    }
+    sd += std::sqrt(std::max(0.0, v));
+  }
+  out.curve_sd_mean = used > 0 ? sd / static_cast<double>(used) : 0.0;
+  return out;
+}
+
+}  // namespace knoblab::fit

@@ -10,6 +10,7 @@
 #include <memory>
 #include <span>
 
+#include "knoblab/fit/covariance.hpp"
 #include "knoblab/fit/fit_data.hpp"
 #include "knoblab/fit/knob_fit.hpp"
 #include "knoblab/model/models.hpp"
@@ -84,24 +85,12 @@ struct StartValues {
 StartValues find_start(const FitData& data, std::span<const std::uint32_t> rows,
                        const FitOptions& opt);
 
-// Parameter covariance at the optimum (covariance.cpp).
-struct CovarianceEstimate {
-  std::vector<double> covariance;  // N×N, zeros for held parameters
-  std::vector<double> se;
-  double t95 = 0.0;
-  double inflation = 1.0;
-  double rss = 0.0;
-  // Mean of the fitted torque's SD √(J·C·Jᵀ) over evenly strided rows (as
-  // summary_stride takes them): a summary figure, not a per-row band.
-  double curve_sd_mean = 0.0;
-};
+// Parameter covariance at the optimum (covariance.cpp; knoblab/fit/covariance.hpp).
+using fit::CovarianceEstimate;
+using fit::covariance_from_rows;
 CovarianceEstimate estimate_covariance(ModelKind kind, const FitData& data,
                                        std::span<const std::uint32_t> rows, const double* p,
                                        const std::vector<bool>& fitted);
-// The same from residuals and Jacobian rows (m × n) evaluated elsewhere.
-CovarianceEstimate covariance_from_rows(std::vector<double> residuals,
-                                        std::vector<double> jacobian, std::size_t n,
-                                        const std::vector<bool>& fitted);
 
 // Stick band from the sliding-law residual near zero velocity (stick_band.cpp).
 // rows: the fitted rows of d; residual: theirs, model − measured (the sliding

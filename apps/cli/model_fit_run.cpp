@@ -1,0 +1,134 @@
+#include "model_fit_run.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string_view>
+
+#include "cancel.hpp"
+#include "capture_input.hpp"
+#include "commands.hpp"
+#include "fit_run.hpp"
+#include "progress.hpp"
+#include "provenance.hpp"
+#include "knoblab/discovery/model_file.hpp"
+#include "knoblab/model/effect_table.hpp"
+
+namespace knoblab::cli {
+
+namespace {
+
+// An effect parameter's presentation: torques (units starting "N·m") in mN·m,
+// everything else in its SI unit.
+Presentation effect_presentation(discovery::EffectId e, std::string_view name) {
+  const model::EffectParam* p = model::effect_row(e).param(name);
+  const std::string_view unit = p ? p->unit : std::string_view();
+  if (unit.starts_with("N·m")) {
+    static thread_local std::string milli;
+    milli = "m" + std::string(unit);
+    return {milli.c_str(), 1e3};
+  }
+  static thread_local std::string si;
+  si = unit.empty() ? "–" : std::string(unit);
+  return {si.c_str(), 1.0};
+}
+
+void print_row(const std::string& name, double value, double ci, const Presentation& p) {
+  char interval[64];
+  if (std::isnan(ci)) {
+    std::snprintf(interval, sizeof interval, "(held)");
+  } else {
+    std::snprintf(interval, sizeof interval, "[%.5g, %.5g]", (value - ci) * p.scale, (value + ci) * p.scale);
+  }
+  std::printf("  %-32s %12.5g  %-27s %s\n", name.c_str(), value * p.scale, interval, p.unit);
+}
+
+void print_model_fit(const discovery::ModelFit& f) {
+  std::printf("model: Eq. 6%s + %zu effect%s, %zu moving rows, %.3f s\n", f.knob.detents ? "" : " (no detents)",
+              f.knob.effects.size(), f.knob.effects.size() == 1 ? "" : "s", f.rows, f.seconds);
+  std::printf("  %-32s %12s  %-27s %s\n", "parameter", "value", "95% CI", "unit");
+  for (std::size_t i = 0; i < f.knob.params.size() && i < model::kThesisParamCount; ++i) {
+    const std::string name(model::kThesisParamNames[i]);
+    print_row(name, f.knob.params[i], f.base_ci95[i], presentation(name));
+  }
+  for (std::size_t e = 0; e < f.knob.effects.size(); ++e) {
+    const discovery::EffectTerm& t = f.knob.effects[e];
+    const std::string id(discovery::effect_name(t.effect));
+    for (std::size_t k = 0; k < t.params.size(); ++k) {
+      const auto& [name, value] = t.params[k];
+      print_row(id + "." + name, value, f.effect_ci95[e][k].second, effect_presentation(t.effect, name));
+    }
+  }
+  if (f.knob.stick) {
+    std::printf("stick band (Eq. 7, held): dv %.4g rad/s, D- %.4g mN·m, D+ %.4g mN·m\n", f.knob.stick->dv,
+                f.knob.stick->D_neg * 1e3, f.knob.stick->D_pos * 1e3);
+  }
+  std::printf("rmse %.4g mN·m over the moving rows\n", f.rmse_Nm * 1e3);
+}
+
+std::string read_model_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw UsageError("--model: cannot read '" + path + "'");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+int run_fit_model_file(const Args& args, const std::string& model_path) {
+  for (const char* option : {"detents", "no-stick", "render-model", "report"}) {
+    if (args.has(option)) {
+      throw UsageError(std::string("--") + option +
+                       " is for the thesis model; with a model file the stick band and the "
+                       "effects come from the file, and --json writes a model file hapticd renders");
+    }
+  }
+  const fit::PrepOptions prep = prep_options(args);
+  const std::string model_text = read_model_text(model_path);
+  discovery::FinalKnob start;
+  try {
+    start = discovery::parse_model_file(model_text, model_path);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+
+  Progress progress = Progress::on_stderr(args, "fit");
+  const CancelOnSignal cancel;
+  const fit::RunHooks hooks = progress.hooks();
+  progress.show("reading the input");
+  CaptureInput in = read_capture_input(args);
+  throw_if_cancelled();
+  progress.show("preparing");
+  const fit::FitData data = fit::prepare(in.capture, prep);
+  const discovery::ModelFit f = discovery::fit_model(data, start, hooks);
+  const std::string json = discovery::model_file_json(f, data.omega, in.title, model_path);
+  throw_if_cancelled();  // the last chance: from here the fit is written out whole
+  progress.clear();
+
+  const bool json_to_stdout = args.get("json") == std::optional<std::string>("-");
+  if (!json_to_stdout) {
+    std::printf("%s\n", in.title.c_str());
+    print_model_fit(f);
+  }
+  if (auto out = args.get("json")) write_text(*out, json);
+  if (in.db && in.capture_id) {
+    // Provenance: the preparation and the model file's terms the fit started from.
+    nlohmann::json options = prep_options_json(prep);
+    const nlohmann::json start_doc = nlohmann::json::parse(model_text);
+    options["model"] = {{"file", model_path},
+                        {"params", start_doc.value("params", nlohmann::json::object())},
+                        {"effects", start_doc.value("effects", nlohmann::json::array())}};
+    const nlohmann::json doc = nlohmann::json::parse(json);
+    const nlohmann::json knob = {{"params", doc.at("params")}, {"stick", doc.at("stick")},
+                                 {"effects", doc.at("effects")}};
+    const std::int64_t fit_id = in.db->insert_fit(*in.capture_id, "thesis6+effects", knob.dump(), json, {},
+                                                  provenance_of(in.sha256, options));
+    if (!json_to_stdout) std::printf("stored as fit %lld\n", static_cast<long long>(fit_id));
+  }
+  return 0;
+}
+
+}  // namespace knoblab::cli
