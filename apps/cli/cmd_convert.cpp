@@ -11,9 +11,11 @@
 #include <optional>
 #include <stdexcept>
 
+#include "cancel.hpp"
 #include "commands.hpp"
 #include "convert_arrays.hpp"
 #include "convert_map.hpp"
+#include "progress.hpp"
 #include "knoblab/interchange/array_file.hpp"
 #include "knoblab/interchange/csv.hpp"
 #include "knoblab/interchange/mapped_csv.hpp"
@@ -36,7 +38,8 @@ const CommandSpec kConvertSpec{
     "unit); none means SI. Time is shifted to start at 0; omega and alpha, when not given,\n"
     "are derived from theta. --map-over-rev: a vector of N values over one revolution\n"
     "(position i at 2*pi*i/N) becomes a static map (theta,torque; '# kind: static-map').\n"
-    "More in docs/interchange.md.",
+    "More in docs/interchange.md. Ctrl-C cancels it before OUT is written (exit status 130);\n"
+    "OUT is written whole or not at all.",
     {{"columns", true, "arrays: channel of each row (or column), e.g. t,theta,torque or -,t,theta,torque; "
                        "CSV: SOURCE=CHANNEL[:UNIT],... e.g. time_ms=t:ms,angle=theta:deg,i_A=torque:*0.0551",
       "NAMES|MAPPING"},
@@ -54,7 +57,8 @@ const CommandSpec kConvertSpec{
      {"map-over-rev", false, "IN holds one value per position over one revolution: write a static map"},
      {"missing", true, "with --map-over-rev: the value that marks a position not measured, e.g. 0 or nan; "
                        "those positions are left out", "X|nan"},
-     {"knob", true, "knob name for the '# knob:' line (import files it under this name), e.g. odrive-gimbal"}},
+     {"knob", true, "knob name for the '# knob:' line (import files it under this name), e.g. odrive-gimbal"},
+     kQuietOption},
     2, 2, true,
     {"knoblab convert slow2/nocomp_0.mat nocomp_0.csv --columns t,theta,torque --counts-per-rev 8192 "
      "--torque-scale 0.0551 --unwrap",
@@ -152,13 +156,15 @@ void refuse(const Args& args, std::initializer_list<const char*> options, const 
     if (args.has(o)) throw UsageError("--" + std::string(o) + " " + why);
 }
 
-int convert_map(const std::string& in, const std::string& out, const Args& args) {
+int convert_map(const std::string& in, const std::string& out, const Args& args, Progress& progress) {
   refuse(args, {"columns", "segment-time", "unwrap", "theta-scale", "delimiter"},
          "does not apply to --map-over-rev (position i of N values is at 2*pi*i/N)");
   std::optional<double> missing;
   if (auto m = args.get("missing")) missing = m == "nan" || m == "NaN" ? std::nan("") : args.number("missing", 0.0);
   const double torque_scale = args.number("torque-scale", 1.0);
+  progress.show("reading " + in);
   const MatArray var = pick_array(in, args);
+  throw_if_cancelled();
   const std::string what = std::filesystem::path(in).filename().string() + ":" + var.name;
   convert::MapResult r = convert::map_over_rev(var, what, torque_scale, missing);
   if (const double counts = positive_counts(args); counts > 0 && counts != static_cast<double>(r.positions))
@@ -170,7 +176,10 @@ int convert_map(const std::string& in, const std::string& out, const Args& args)
   if (missing)
     r.map.metadata.emplace_back("missing", std::string(std::isnan(*missing) ? "nan" : shortest(*missing)) + ": " +
                                                std::to_string(r.missing) + " positions not measured, left out");
+  throw_if_cancelled();  // the last chance: from here OUT is written whole
+  progress.show("writing " + out);
   interchange::write_static_map(r.map, std::filesystem::path(out));
+  progress.clear();
 
   std::printf("converted %s (%s): static map of %zu of %zu positions over one revolution to %s\n", what.c_str(),
               var.describe().c_str(), r.map.size(), r.positions, out.c_str());
@@ -184,7 +193,7 @@ int convert_map(const std::string& in, const std::string& out, const Args& args)
   return 0;
 }
 
-int convert_arrays(const std::string& in, const std::string& out, const Args& args) {
+int convert_arrays(const std::string& in, const std::string& out, const Args& args, Progress& progress) {
   refuse(args, {"delimiter"}, "is for CSV input; " + in + " is a MAT, .npy or .npz file");
   const std::vector<int> cols = convert::parse_channel_list(args.require("columns"));
   if (args.has("counts-per-rev") && args.has("theta-scale"))
@@ -198,7 +207,9 @@ int convert_arrays(const std::string& in, const std::string& out, const Args& ar
   if (segment_time != "continuous" && segment_time != "restart")
     throw UsageError("--segment-time must be 'continuous' or 'restart'");
 
+  progress.show("reading " + in);
   const MatArray var = pick_array(in, args);
+  throw_if_cancelled();
   const std::string what = std::filesystem::path(in).filename().string() + ":" + var.name;
   if (!var.is_cell() && !var.is_numeric())
     throw std::runtime_error(what + " is " + var.describe() +
@@ -221,8 +232,12 @@ int convert_arrays(const std::string& in, const std::string& out, const Args& ar
     meta.emplace_back("segments", std::to_string(var.cols()) + (segment_time == "restart"
                                       ? ", clock restarting; each placed one median interval after the last"
                                       : ", joined"));
+  progress.show("deriving the capture");
   const interchange::Capture cap = finish_capture(std::move(ch), leading_metadata(args, what), meta, what);
+  throw_if_cancelled();  // the last chance: from here OUT is written whole
+  progress.show("writing " + out);
   interchange::write_csv(cap, std::filesystem::path(out));
+  progress.clear();
 
   std::printf("converted %s (%s): %zu samples over %.3f s to %s", what.c_str(), var.describe().c_str(),
               cap.size(), cap.t.back(), out.c_str());
@@ -231,7 +246,7 @@ int convert_arrays(const std::string& in, const std::string& out, const Args& ar
   return 0;
 }
 
-int convert_csv(const std::string& in, const std::string& out, const Args& args) {
+int convert_csv(const std::string& in, const std::string& out, const Args& args, Progress& progress) {
   refuse(args, {"theta-scale", "torque-scale"}, "is for arrays; for a CSV give the unit in --columns, "
                                                  "e.g. angle=theta:deg or current_A=torque:*0.0551");
   refuse(args, {"var", "segment-time"}, "is for MAT, .npy and .npz files; " + in + " is read as a CSV");
@@ -247,7 +262,9 @@ int convert_csv(const std::string& in, const std::string& out, const Args& args)
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
+  progress.show("reading " + in);
   interchange::MappedCsv csv = interchange::read_mapped_csv(in, mapping, delimiter);
+  throw_if_cancelled();
   const std::string what = std::filesystem::path(in).filename().string();
   // In SI already: a wrap is a jump of more than half of 2*pi.
   const std::size_t jumps = args.has("unwrap") ? convert::unwrap(csv.channels[kTheta], 2 * std::numbers::pi) : 0;
@@ -260,8 +277,12 @@ int convert_csv(const std::string& in, const std::string& out, const Args& args)
   if (!ignored.empty()) meta.emplace_back("ignored_columns", ignored);
   Channels ch;
   for (std::size_t c = 0; c < ch.size(); ++c) ch[c] = std::move(csv.channels[c]);
+  progress.show("deriving the capture");
   const interchange::Capture cap = finish_capture(std::move(ch), leading_metadata(args, what), meta, what);
+  throw_if_cancelled();  // the last chance: from here OUT is written whole
+  progress.show("writing " + out);
   interchange::write_csv(cap, std::filesystem::path(out));
+  progress.clear();
 
   std::printf("converted %s (CSV, delimiter %s): %zu samples over %.3f s to %s", what.c_str(),
               csv.delimiter == '\t' ? "tab" : std::string(1, csv.delimiter).c_str(), cap.size(), cap.t.back(),
@@ -277,9 +298,12 @@ int convert_csv(const std::string& in, const std::string& out, const Args& args)
 int run_convert(const Args& args) {
   const std::string in = args.positionals().at(0), out = args.positionals().at(1);
   if (args.has("missing") && !args.has("map-over-rev")) throw UsageError("--missing is for --map-over-rev");
-  if (args.has("map-over-rev")) return convert_map(in, out, args);
-  if (!args.has("columns")) throw UsageError("'convert' needs --columns (or --map-over-rev for a map)");
-  return is_array_input(in) ? convert_arrays(in, out, args) : convert_csv(in, out, args);
+  if (!args.has("map-over-rev") && !args.has("columns"))
+    throw UsageError("'convert' needs --columns (or --map-over-rev for a map)");
+  Progress progress = Progress::on_stderr(args, "convert");
+  const CancelOnSignal cancel;
+  if (args.has("map-over-rev")) return convert_map(in, out, args, progress);
+  return is_array_input(in) ? convert_arrays(in, out, args, progress) : convert_csv(in, out, args, progress);
 }
 
 }  // namespace knoblab::cli

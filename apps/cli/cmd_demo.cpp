@@ -10,8 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "cancel.hpp"
 #include "commands.hpp"
 #include "fit_run.hpp"
+#include "progress.hpp"
 #include "knoblab/model/terms.hpp"
 #include "provenance.hpp"
 #include "knoblab/discovery/discrepancy.hpp"
@@ -26,10 +28,13 @@ const CommandSpec kDemoSpec{
     "demo", "[--db FILE.sqlite] [--seconds S] [--rate HZ]",
     "Capture, store and fit the five thesis knobs in simulation, against the truth.\n"
     "Each knob is captured with the Table 3 swept sine through the PID, stored, fitted\n"
-    "with the knob model and compared with its true parameters and with Table 7.",
+    "with the knob model and compared with its true parameters and with Table 7.\n"
+    "Ctrl-C stops it (exit status 130): the knobs done so far stay in the store, whole; the\n"
+    "capture under way is not kept.",
     {{"db", true, "store to write (default /tmp/knoblab-demo/demo.sqlite, replaced)"},
      {"seconds", true, "capture length per knob, s (default 5)"},
-     {"rate", true, "loop rate, Hz (default 5000)"}},
+     {"rate", true, "loop rate, Hz (default 5000)"},
+     kQuietOption},
     0, 0, false,
     {"knoblab demo", "knoblab demo --db /tmp/demo.sqlite --seconds 10"}};
 
@@ -120,6 +125,16 @@ void print_knob(const DemoKnob& k, const sim::KnobParams& truth, const fit::FitR
               r.iterations, r.seconds);
 }
 
+// The hooks of one knob's stages, its name before each ("moderate-detents:
+// fitting").
+fit::RunHooks knob_hooks(Progress& progress, const std::string& knob) {
+  fit::RunHooks h = progress.hooks();
+  h.progress = [&progress, knob](std::string_view stage, std::size_t done, std::size_t total) {
+    progress.show(knob + ": " + std::string(stage), done, total);
+  };
+  return h;
+}
+
 }  // namespace
 
 int run_demo(const Args& args) {
@@ -137,6 +152,8 @@ int run_demo(const Args& args) {
               "ω > 0 and −C_vel− + B_vel−·ω for ω < 0 (both C ≥ 0 for a knob that resists), detents\n"
               "A_pos ≥ 0 with S_pos in (−π, π]. Table 7 is printed as the thesis printed it: its\n"
               "negative-direction terms signed, some detent periods swapped between knobs.\n");
+  Progress progress = Progress::on_stderr(args, "demo");
+  const CancelOnSignal cancel;
   int failures = 0;
   double found[5] = {};
   std::vector<std::string> discrepancies;  // per knob, what discovery says is missing
@@ -147,12 +164,17 @@ int run_demo(const Args& args) {
     req.knob = *sim::presets::knob(k.id);
     req.seconds = args.number("seconds", req.seconds);
     req.rate_hz = args.number("rate", req.rate_hz);
+    req.hooks = knob_hooks(progress, k.id);
     const SimulationResult s = simulate(req, &db);
+    progress.clear();
     std::printf("\n%s: capture %lld, %zu samples, PID tracking %.3f° rms\n", k.id,
                 static_cast<long long>(s.capture_id.value_or(0)), s.capture.size(),
                 s.tracking_rms_rad * 180 / 3.141592653589793);
     try {
-      const FitRun run = fit_capture(s.capture, fit::PrepOptions{}, fit::FitOptions{});
+      fit::FitOptions fit_options;
+      fit_options.hooks = req.hooks;
+      const FitRun run = fit_capture(s.capture, fit::PrepOptions{}, fit_options);
+      progress.clear();
       print_knob(k, req.knob, run.result);
       found[idx] = run.result.detents ? 1.0 / run.result.value("P_pos") : 0.0;
       if (s.capture_id) {
@@ -167,7 +189,10 @@ int run_demo(const Args& args) {
       SimulationRequest longer = req;
       longer.seconds = std::max(8.0, req.seconds);
       const SimulationResult ls = simulate(longer, &db);
-      const discovery::DiscrepancyResult d = discovery::discover(fit::prepare(ls.capture));
+      discovery::DiscrepancyOptions discovery_options;
+      discovery_options.hooks = req.hooks;
+      const discovery::DiscrepancyResult d = discovery::discover(fit::prepare(ls.capture), discovery_options);
+      progress.clear();
       std::string line = std::string(k.id) + " (capture " + std::to_string(ls.capture_id.value_or(0)) + "):";
       if (d.findings.empty() && d.tentative.empty()) line += " nothing missing";
       if (!d.tentative.empty()) {
@@ -179,7 +204,10 @@ int run_demo(const Args& args) {
         line += "\n    " + std::string(discovery::effect_name(f.effect)) + " — " + f.explanation;
       }
       discrepancies.push_back(std::move(line));
+    } catch (const fit::Cancelled&) {
+      throw;  // stop the demo; main says so, exit status 130
     } catch (const std::exception& e) {
+      progress.clear();
       std::printf("  fit failed: %s\n", e.what());
       ++failures;
     }

@@ -5,6 +5,14 @@
 // result, partial row or file left anywhere.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <fstream>
+#include <thread>
 
 #include <filesystem>
 #include <string>
@@ -142,6 +150,62 @@ TEST_F(CancelCli, CtrlCDuringAnImportTakesItsSamplesOutAgain) {
   EXPECT_EQ(std::to_string(store::Store::open(db_).list_captures().size()) + " " +
                 std::to_string(rows(db_, "samples")),
             before);
+}
+
+TEST_F(CancelCli, CtrlCDuringTheDemoKeepsTheKnobsDoneWholeAndTheCaptureUnderWayNot) {
+  TerminalRun run({"demo", "--db", db_, "--seconds", "2"}, tmp_);
+  // The first knob done (its capture, fit, discovery capture), the second under way.
+  ASSERT_TRUE(run.wait_for("knoblab demo: high-inertia: simulating")) << run.output();
+  ::kill(run.pid(), SIGINT);
+  EXPECT_EQ(run.finish(), 130) << run.output();
+  EXPECT_NE(run.output().find("knoblab demo: cancelled"), std::string::npos) << run.output();
+  EXPECT_NE(run.output().find("high-friction: capture 1"), std::string::npos) << run.output();
+  EXPECT_EQ(store::Store::open(db_).integrity_check(), "ok");
+  EXPECT_EQ(rows(db_, "captures"), 2) << "high-friction's two captures, nothing of high-inertia's";
+  EXPECT_EQ(store::Store::open(db_).connection().query_int("SELECT count(*) FROM captures WHERE status != 'complete'"), 0);
+  EXPECT_EQ(rows(db_, "fits"), 1);
+}
+
+// The input is a FIFO the test writes, as a slow disk or network share would
+// deliver a big file: Ctrl-C comes while convert is still reading it.
+TEST_F(CancelCli, CtrlCWhileAConvertReadsItsInputWritesNoOutput) {
+  const std::string fifo = (dir_ / "slow.csv").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const auto out = dir_ / "out.csv";
+  const std::string header = "time_ms,angle_deg,torque_mNm\n";
+  std::string body;
+  for (int i = 0; i < 2000; ++i) body += std::to_string(i) + "," + std::to_string(i % 360) + ",1.5\n";
+  std::atomic<bool> reading{false}, half_written{false}, signalled{false};
+  const auto wait = [](const std::atomic<bool>& flag) {
+    for (int i = 0; i < 6000 && !flag; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  };
+  std::thread writer([&] {
+    // convert opens the input twice: first to tell a CSV from an array file
+    // by its first bytes, then, once it says it is reading, to read it.
+    { std::ofstream(fifo, std::ios::binary) << header << "0,0,1.5\n"; }
+    wait(reading);
+    std::ofstream f(fifo, std::ios::binary);
+    f << header << body.substr(0, body.size() / 2) << std::flush;
+    half_written = true;
+    wait(signalled);
+    f << body.substr(body.size() / 2);
+  });
+  TerminalRun run({"convert", fifo, out.string(), "--columns", "time_ms=t:ms,angle_deg=theta:deg,torque_mNm=torque:mN*m"},
+                  tmp_);
+  reading = run.wait_for("knoblab convert: reading");
+  wait(half_written);
+  ::kill(run.pid(), SIGINT);
+  signalled = true;
+  // Had convert not come to reading, the writer would wait for a reader for ever.
+  const int unblock = reading ? -1 : ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
+  writer.join();
+  if (unblock >= 0) ::close(unblock);
+  ASSERT_TRUE(reading) << run.output();
+  EXPECT_EQ(run.finish(), 130) << run.output();
+  EXPECT_NE(run.output().find("knoblab convert: cancelled"), std::string::npos) << run.output();
+  EXPECT_FALSE(std::filesystem::exists(out));
+  for (const auto& e : std::filesystem::directory_iterator(dir_.path()))  // no temporary either
+    EXPECT_TRUE(e.path() == fifo || e.path() == tmp_) << e.path();
 }
 
 }  // namespace
