@@ -13,6 +13,7 @@
 #include "provenance.hpp"
 #include "result_files.hpp"
 #include "knoblab/discovery/discrepancy.hpp"
+#include "model_input.hpp"
 #include "knoblab/discovery/report.hpp"
 #include "knoblab/fit/fit_data.hpp"
 
@@ -22,7 +23,8 @@ const CommandSpec kDiscrepancySpec{
     "discrepancy",
     "(FILE.csv | --capture ID --db FILE.sqlite) [--heldout FILE.csv | --heldout-capture ID]\n"
     "  [--json OUT.json|-] [--model-out FILE.json] [--report DIR [--format pdf,svg,png]\n"
-    "  [--size 160x100mm] [--dpi 300]] [--effects LIST] [--max-findings N] [--min-gain PCT]",
+    "  [--size 160x100mm] [--dpi 300]] [--effects LIST] [--max-findings N] [--min-gain PCT]\n"
+    "  [--model MODEL.json [--refit]]",
     "Find what the thesis model leaves out of a capture, and say which physics it is.\n"
     "Locates the structured residual, fits candidate effects (stribeck, backlash,\n"
     "detent_shape, periodic_torque, …) with the model, keeps those that lower the error on\n"
@@ -32,7 +34,10 @@ const CommandSpec kDiscrepancySpec{
     "effects) as a model file that knoblab simulate --params, knoblab ctl load_model and\n"
     "hapticd --model take (docs/discrepancy.md). --report writes the figures as PDF, SVG\n"
     "and PNG, each with its data as CSV (docs/figures.md). Ctrl-C cancels it: nothing is\n"
-    "written or stored, exit status 130.",
+    "written or stored, exit status 130.\n"
+    "--model takes the base from a given model instead of fitting Eq. 6 (a fit's JSON, a\n"
+    "render model or a model file: the simulation you trust), held as given (--refit: fitted\n"
+    "from it), and says what the recording has that the model lacks.",
     with_figure_options({{"capture", true, "capture id in the store (instead of FILE.csv)"},
      {"db", true, "sqlite store"},
      {"heldout", true, "another recording of the knob (CSV), held out whole instead of time blocks"},
@@ -43,13 +48,16 @@ const CommandSpec kDiscrepancySpec{
      {"model-out", true, "write the final model as a model file (simulate --params, ctl load_model)"},
      {"report", true, "directory for the report: residual figures before/after, whiteness, summary"},
      {"effects", true, "comma-separated candidate effect ids (default: all implemented)", "LIST"},
+     {"model", true, "the base: a fit's JSON, a render model or a model file, held as given", "MODEL.json"},
+     {"refit", false, "with --model: fit the given model's terms to the recording first"},
      {"alpha", true, "accel (default: the α column, when the CSV has one) or encoder (θ'')", "accel|encoder"},
      {"no-filter", false, "skip the Table 6 low-pass filters (data already clean)"},
      kQuietOption}),
     0, 1, true,
     {"knoblab simulate --knob moderate-detents --effects 'stribeck:static_excess_Nm=0.004,stribeck_velocity_rad_s=0.5' "
      "--out knob.csv && knoblab discrepancy knob.csv --report report/",
-     "knoblab discrepancy --capture 1 --db lab.sqlite --json found.json --report report/ --format pdf"}};
+     "knoblab discrepancy --capture 1 --db lab.sqlite --json found.json --report report/ --format pdf",
+     "knoblab discrepancy --model simulation.model.json --input real.csv --report report/"}};
 
 namespace {
 
@@ -102,6 +110,13 @@ int run_discrepancy(const Args& args) {
     opt.min_reported_gain = pct / 100.0;
   }
   if (args.get("report") == std::optional<std::string>("")) throw UsageError("--report needs a directory");
+  if (args.has("refit") && !args.has("model")) throw UsageError("--refit is for a base given with --model");
+  std::optional<ModelInput> given;
+  if (auto path = args.get("model")) {
+    given = read_model_input(*path);
+    opt.base_model = given->knob;
+    opt.refit_base = args.has("refit");
+  }
   const fit::plot::FigureOptions figure_opts = figure_options(args);  // checked before any work
   nlohmann::json options = prep_options_json(prep);
   options["effects"] = nlohmann::json::array();
@@ -109,6 +124,14 @@ int run_discrepancy(const Args& args) {
     options["effects"].push_back(std::string(discovery::effect_name(e)));
   options["max_findings"] = opt.max_findings;
   options["min_gain_percent"] = 100.0 * opt.min_reported_gain;
+  if (given) {
+    const nlohmann::json doc = nlohmann::json::parse(given->text);
+    options["model"] = {{"file", *args.get("model")},
+                        {"model", doc.value("model", "thesis6")},
+                        {"params", doc.at("params")},
+                        {"effects", doc.value("effects", nlohmann::json::array())},
+                        {"refit", opt.refit_base}};
+  }
 
   Progress progress = Progress::on_stderr(args, "discrepancy");
   const CancelOnSignal cancel;
@@ -148,7 +171,12 @@ int run_discrepancy(const Args& args) {
     if (data.resampled) {
       std::printf("irregular time stamps: resampled onto their median interval (%.4g Hz)\n", data.rate_hz);
     }
-    std::printf("base model: %s\n", figures(r.base).c_str());
+    if (given) {
+      std::printf("base model: %s, %s: %s\n", args.get("model")->c_str(),
+                  r.base_held ? "held as given" : "refitted from it", figures(r.base).c_str());
+    } else {
+      std::printf("base model: %s\n", figures(r.base).c_str());
+    }
     if (r.findings.empty() && r.tentative.empty())
       std::printf("no finding: nothing from the effect library improves the held-out error\n");
     if (!r.tentative.empty()) {

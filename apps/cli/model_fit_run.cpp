@@ -2,15 +2,14 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string_view>
 
 #include "cancel.hpp"
 #include "capture_input.hpp"
 #include "commands.hpp"
 #include "fit_run.hpp"
+#include "model_input.hpp"
 #include "progress.hpp"
 #include "provenance.hpp"
 #include "knoblab/discovery/model_file.hpp"
@@ -68,14 +67,6 @@ void print_model_fit(const discovery::ModelFit& f) {
   std::printf("rmse %.4g mN·m over the moving rows\n", f.rmse_Nm * 1e3);
 }
 
-std::string read_model_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw UsageError("--model: cannot read '" + path + "'");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 }  // namespace
 
 int run_fit_model_file(const Args& args, const std::string& model_path) {
@@ -87,13 +78,7 @@ int run_fit_model_file(const Args& args, const std::string& model_path) {
     }
   }
   const fit::PrepOptions prep = prep_options(args);
-  const std::string model_text = read_model_text(model_path);
-  discovery::FinalKnob start;
-  try {
-    start = discovery::parse_model_file(model_text, model_path);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
+  const ModelInput start = read_model_input(model_path);
 
   Progress progress = Progress::on_stderr(args, "fit");
   const CancelOnSignal cancel;
@@ -103,7 +88,7 @@ int run_fit_model_file(const Args& args, const std::string& model_path) {
   throw_if_cancelled();
   progress.show("preparing");
   const fit::FitData data = fit::prepare(in.capture, prep);
-  const discovery::ModelFit f = discovery::fit_model(data, start, hooks);
+  const discovery::ModelFit f = discovery::fit_model(data, start.knob, hooks);
   const std::string json = discovery::model_file_json(f, data.omega, in.title, model_path);
   throw_if_cancelled();  // the last chance: from here the fit is written out whole
   progress.clear();
@@ -117,7 +102,7 @@ int run_fit_model_file(const Args& args, const std::string& model_path) {
   if (in.db && in.capture_id) {
     // Provenance: the preparation and the model file's terms the fit started from.
     nlohmann::json options = prep_options_json(prep);
-    const nlohmann::json start_doc = nlohmann::json::parse(model_text);
+    const nlohmann::json start_doc = nlohmann::json::parse(start.text);
     options["model"] = {{"file", model_path},
                         {"params", start_doc.value("params", nlohmann::json::object())},
                         {"effects", start_doc.value("effects", nlohmann::json::array())}};

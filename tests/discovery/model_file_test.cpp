@@ -126,7 +126,7 @@ void expect_refused(const std::string& text, const std::string& says) {
 TEST(ModelFile, AMalformedModelFileIsRefusedNamingTheFileAndTheField) {
   expect_refused("{\"params\": {\"M_acc\": 1e-5", "not JSON");
   expect_refused("[1, 2]", "not a JSON object");
-  expect_refused(R"({"model": "render4", "params": {}})", "not thesis6");
+  expect_refused(R"({"model": "render9", "params": {}})", "neither thesis6");
   expect_refused(R"({"params": {"M_acc": "heavy"}})", "'M_acc' is not a finite number");
   expect_refused(R"({"params": {"mass": 1}})", "unknown parameter 'mass' (known: M_acc");
   expect_refused(R"({"params": {}, "stick": {"dv": -1}})", "magnitudes");

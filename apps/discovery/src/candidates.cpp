@@ -150,7 +150,7 @@ std::optional<ExtendedModel> compliance_search(const ExtendedModel& m, const fit
 
 double base_period(const ExtendedModel& m) { return std::abs(m.base[model::kP_pos]); }
 bool base_has_detents(const ExtendedModel& m) {
-  return m.base_fitted.size() > model::kA_pos && m.base_fitted[model::kA_pos];
+  return m.has_detents();
 }
 
 }  // namespace

@@ -127,7 +127,8 @@ struct Score {
 std::size_t free_count(const ExtendedModel& m) {
   std::size_t k = 0;
   for (const bool f : m.base_fitted) k += f ? 1 : 0;
-  for (const ActiveEffect& e : m.effects) k += e.params.size() + (e.params.empty() ? 1 : 0);
+  for (const ActiveEffect& e : m.effects)
+    if (!e.held) k += e.params.size() + (e.params.empty() ? 1 : 0);
   return k;
 }
 
@@ -265,11 +266,11 @@ namespace {
 
 // Samples slower than this are held by static friction (or inside the stick
 // band): no sliding law describes them, so they are left out.
-double slow_speed(const fit::FitData& d, const fit::FitResult& base_fit) {
+double slow_speed(const fit::FitData& d, const std::optional<fit::StickBand>& stick) {
   std::vector<double> speed(d.size());
   for (std::size_t i = 0; i < d.size(); ++i) speed[i] = std::abs(d.omega[i]);
   double slow = 0.02 * model::quantile(std::move(speed), 0.95);
-  if (base_fit.stick) slow = std::max(slow, base_fit.stick->dv);
+  if (stick) slow = std::max(slow, stick->dv);
   return slow;
 }
 
@@ -337,14 +338,52 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
   const std::size_t B = out.heldout_recording ? B0 : blocks_for(d, B0);
   out.blocks = out.heldout_recording ? 0 : B;
   Split s = split_rows(d, all_d, h, all_h, B, opt);
-  opt.hooks.report("fitting the base model");
-  fit::FitOptions base_options;
-  base_options.hooks = opt.hooks;
-  const fit::FitResult base_fit = fit::fit_knob(subset(d, s.train), base_options);
-  // Near-stuck samples: inside the fitted stick band, and in any case below
-  // 2 % of the brisk speed (an effect the base lacks can hide the band from
-  // its estimate).
-  const double slow = slow_speed(d, base_fit);
+  const auto [lo, hi] = std::minmax_element(d.theta.begin(), d.theta.end());
+  std::optional<fit::StickBand> stick;  // the base's Eq. 7 band, carried to the final knob
+  ExtendedModel m;
+  double slow = 0.0;
+  if (opt.base_model) {
+    // The given model's terms, held as given (or refitted from them).
+    m = detail::extended_of(*opt.base_model);
+    stick = opt.base_model->stick;
+    if (!opt.refit_base) {
+      m.base_fitted.assign(m.base.size(), false);
+      if (opt.base_model->detent_phase_unknown && opt.base_model->detents) m.base_fitted[model::kS_pos] = true;
+      for (ActiveEffect& e : m.effects) e.held = true;
+    }
+    slow = slow_speed(d, stick);
+  } else {
+    opt.hooks.report("fitting the base model");
+    fit::FitOptions base_options;
+    base_options.hooks = opt.hooks;
+    const fit::FitResult base_fit = fit::fit_knob(subset(d, s.train), base_options);
+    stick = base_fit.stick;
+    // Near-stuck samples: inside the fitted stick band, and in any case below
+    // 2 % of the brisk speed (an effect the base lacks can hide the band from
+    // its estimate).
+    slow = slow_speed(d, stick);
+    m.base = base_fit.params;
+    m.base_fitted = base_fit.fitted;
+    if (stick) {
+      m.stick_band = stick->dv;
+      // One breakaway level both ways: behind a play the band's estimate is
+      // unreliable in one direction (the mechanism stands while the knob
+      // crosses the play), so the larger one stands for both.
+      m.breakaway = std::max(stick->D_pos, stick->D_neg);
+    }
+    // A "detent" term under 1.5 cycles per revolution, or with fewer than two
+    // periods inside the swept range, is a slow trend over position, not
+    // detents: the base goes without it, and gravity or a spring must earn it
+    // back on held-out data under their own names.
+    const double periods = (*hi - *lo) / (2 * std::numbers::pi * std::abs(m.base[model::kP_pos]));
+    if (m.base_fitted[model::kA_pos] && (std::abs(m.base[model::kP_pos]) > 1.0 / 1.5 || periods < 2.0)) {
+      for (const std::size_t k : {model::kA_pos, model::kP_pos, model::kS_pos}) m.base_fitted[k] = false;
+      m.base[model::kA_pos] = 0.0;
+    }
+  }
+  out.base_given = opt.base_model.has_value();
+  out.base_held = out.base_given && !opt.refit_base;
+  m.stick_speed = slow;
   const std::vector<char> usable_d = faster_than(d, slow);
   s = split_rows(d, usable_d, h,
                  out.heldout_recording ? within_training_speeds(d, usable_d, h, slow) : usable_d, B, opt);
@@ -353,27 +392,6 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
                                 ? "the held-out recording has " + std::to_string(s.held.size()) +
                                       " rows inside the training's velocity range; it needs 100"
                                 : "too few moving samples for held-out blocks");
-  }
-  ExtendedModel m;
-  m.base = base_fit.params;
-  m.base_fitted = base_fit.fitted;
-  m.stick_speed = slow;
-  if (base_fit.stick) {
-    m.stick_band = base_fit.stick->dv;
-    // One breakaway level both ways: behind a play the band's estimate is
-    // unreliable in one direction (the mechanism stands while the knob
-    // crosses the play), so the larger one stands for both.
-    m.breakaway = std::max(base_fit.stick->D_pos, base_fit.stick->D_neg);
-  }
-  // A "detent" term under 1.5 cycles per revolution, or with fewer than two
-  // periods inside the swept range, is a slow trend over position, not
-  // detents: the base goes without it, and gravity or a spring must earn it
-  // back on held-out data under their own names.
-  const auto [lo, hi] = std::minmax_element(d.theta.begin(), d.theta.end());
-  const double periods = (*hi - *lo) / (2 * std::numbers::pi * std::abs(m.base[model::kP_pos]));
-  if (m.base_fitted[model::kA_pos] && (std::abs(m.base[model::kP_pos]) > 1.0 / 1.5 || periods < 2.0)) {
-    for (const std::size_t k : {model::kA_pos, model::kP_pos, model::kS_pos}) m.base_fitted[k] = false;
-    m.base[model::kA_pos] = 0.0;
   }
   detail::fit_extended(m, d, s.train);
   opt.hooks.check();
@@ -475,7 +493,7 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
     current = base_score;
   }
   out.final_model = summary_of(m, current);
-  out.final_knob = detail::final_knob_of(m, base_fit.stick);
+  out.final_knob = detail::final_knob_of(m, stick);
   if (out.findings.empty()) {
     out.same_rows = {out.base.heldout_rows, std::nan(""), std::nan("")};
   } else {

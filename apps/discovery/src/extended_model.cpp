@@ -13,6 +13,11 @@ namespace knoblab::discovery::detail {
 
 bool ExtendedModel::has(EffectId id) const { return find(id) != nullptr; }
 
+bool ExtendedModel::has_detents() const {
+  const bool fitted = base_fitted.size() > model::kA_pos ? base_fitted[model::kA_pos] : true;
+  return fitted || (base.size() > model::kA_pos && base[model::kA_pos] != 0.0);
+}
+
 const ActiveEffect* ExtendedModel::find(EffectId id) const {
   for (const ActiveEffect& e : effects)
     if (e.id == id) return &e;
@@ -40,7 +45,7 @@ Layout layout_of(const ExtendedModel& m) {
     L.offset.push_back(at);
     at += static_cast<int>(e.params.size());
   }
-  L.base_detents = m.base_fitted.size() > model::kA_pos ? m.base_fitted[model::kA_pos] : true;
+  L.base_detents = m.has_detents();
   if (const ActiveEffect* d = m.find(EffectId::Drift)) L.t_mid = d->setting;
   return L;
 }
@@ -225,12 +230,17 @@ FitReport fit_extended(ExtendedModel& m, const fit::FitData& d, std::span<const 
         static_cast<int>(len));
     problem.AddResidualBlock(cost, nullptr, p.data());
   }
+  std::vector<bool> free = m.base_fitted;
+  free.resize(m.base.size(), false);
+  for (const ActiveEffect& e : m.effects) free.insert(free.end(), e.params.size(), !e.held);
   std::vector<int> held;
-  for (std::size_t k = 0; k < static_cast<std::size_t>(kMaxParams); ++k) {
-    const bool base_held = k < m.base_fitted.size() && !m.base_fitted[k];
-    if (k >= used || base_held) held.push_back(static_cast<int>(k));
+  for (std::size_t k = 0; k < static_cast<std::size_t>(kMaxParams); ++k)
+    if (k >= used || !free[k]) held.push_back(static_cast<int>(k));
+  if (held.size() == static_cast<std::size_t>(kMaxParams)) {
+    problem.SetParameterBlockConstant(p.data());  // a given model, held whole: nothing to fit
+  } else if (!held.empty()) {
+    problem.SetManifold(p.data(), new ceres::SubsetManifold(kMaxParams, held));
   }
-  if (!held.empty()) problem.SetManifold(p.data(), new ceres::SubsetManifold(kMaxParams, held));
 
   ceres::Solver::Options so;
   so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;

@@ -30,6 +30,8 @@ struct ActiveEffect {
   // compliance only: the coupling's damping over its stiffness, c/k (s) —
   // the twist follows τ/k through a first-order lag of this time constant.
   double lag_s = 0.0;
+  // Part of a given model held fixed (discrepancy --model): not fitted.
+  bool held = false;
 };
 
 struct ExtendedModel {
@@ -46,6 +48,8 @@ struct ExtendedModel {
   double stick_band = 0.0, breakaway = 0.0;
 
   bool has(EffectId id) const;
+  // Eq. 6's detent term is in the model: fitted, or held at a given amplitude.
+  bool has_detents() const;
   const ActiveEffect* find(EffectId id) const;
   std::vector<double> flat() const;   // base then every effect's params
   void unflatten(std::span<const double> p);

@@ -47,7 +47,7 @@ Params settable_params(const ActiveEffect& e, const ExtendedModel& m) {
 FinalKnob final_knob_of(const ExtendedModel& m, const std::optional<fit::StickBand>& stick) {
   FinalKnob k;
   k.params = m.base;
-  k.detents = m.base_fitted.size() > model::kA_pos && m.base_fitted[model::kA_pos];
+  k.detents = m.has_detents();
   k.stick = stick;
   for (const ActiveEffect& e : m.effects) k.effects.push_back({e.id, settable_params(e, m)});
   if (k.params[model::kA_pos] < 0) {  // half a period on: sin(k(φ + π)) = (−1)^k sin(kφ)

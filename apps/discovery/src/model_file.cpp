@@ -93,6 +93,26 @@ Params effect_intervals(const detail::ExtendedModel& m, std::size_t e, std::size
   return out;
 }
 
+// A render model (Eq. 14, `knoblab fit --render-model`): one viscous term
+// both ways, no Coulomb level, the stick band among the parameters, and no
+// detent phase (where a capture started is not the knob's).
+FinalKnob render_model_knob(const json& p, const std::string& where) {
+  static constexpr std::string_view kNames[] = {"M_acc", "B_vel", "A_pos", "P_pos", "S_pos", "dv", "D_neg", "D_pos"};
+  refuse_unknown(p, kNames, where + ": params");
+  const auto v = [&](const char* name, double fallback) { return number_field(p, name, where + ": params", fallback); };
+  FinalKnob k;
+  k.params.assign(model::kThesisParamCount, 0.0);
+  k.params[model::kM_acc] = v("M_acc", 0.0);
+  k.params[model::kB_vel_neg] = k.params[model::kB_vel_pos] = v("B_vel", 0.0);
+  k.params[model::kA_pos] = v("A_pos", 0.0);
+  k.params[model::kP_pos] = v("P_pos", 1.0);
+  k.params[model::kS_pos] = v("S_pos", 0.0);
+  k.detents = k.params[model::kA_pos] != 0.0;
+  k.detent_phase_unknown = !p.contains("S_pos");
+  if (p.contains("dv")) k.stick = fit::StickBand{v("dv", 0.0), v("D_neg", 0.0), v("D_pos", 0.0), 0};
+  return k;
+}
+
 }  // namespace
 
 FinalKnob parse_model_file(std::string_view json_text, std::string_view source) {
@@ -104,14 +124,18 @@ FinalKnob parse_model_file(std::string_view json_text, std::string_view source) 
     throw std::invalid_argument(where + ": not JSON (" + e.what() + ")");
   }
   if (!doc.is_object()) throw std::invalid_argument(where + ": not a JSON object");
-  if (doc.contains("model") && doc.at("model") != "thesis6")
-    throw std::invalid_argument(where + ": model '" + doc.at("model").dump() +
-                                "' is not thesis6 (a model file, or a fit's JSON of the thesis model)");
   if (!doc.contains("params") || !doc.at("params").is_object())
     throw std::invalid_argument(where + ": no \"params\" object");
   const json& p = doc.at("params");
-  refuse_unknown(p, model::kThesisParamNames, where + ": params");
+  const std::string kind = doc.contains("model") && doc.at("model").is_string() ? doc.at("model").get<std::string>()
+                           : doc.contains("model")                             ? doc.at("model").dump()
+                                                                               : "thesis6";
   FinalKnob k;
+  if (kind == "render4") return render_model_knob(p, where);
+  if (kind != "thesis6")
+    throw std::invalid_argument(where + ": model '" + kind +
+                                "' is neither thesis6 (a model file, a fit's JSON) nor render4 (a render model)");
+  refuse_unknown(p, model::kThesisParamNames, where + ": params");
   for (std::size_t i = 0; i < model::kThesisParamCount; ++i)
     k.params.push_back(number_field(p, std::string(model::kThesisParamNames[i]), where + ": params",
                                     i == model::kP_pos ? 1.0 : 0.0));

@@ -49,7 +49,9 @@ std::string to_json(const DiscrepancyResult& r, int indent) {
                {"fit_percent", r.base.fit_percent},
                {"whiteness_p", r.base.whiteness_p},
                {"independence_p", r.base.independence_p},
-               {"forward_rmse_rad", r.base.forward_rmse_rad}};
+               {"forward_rmse_rad", r.base.forward_rmse_rad},
+               // fitted: Eq. 6 fitted here; given: a model held as given; refitted: a given model fitted here.
+               {"source", !r.base_given ? "fitted" : r.base_held ? "given" : "refitted"}};
   j["findings"] = findings_json(r.findings);
   // Outside the documented names: found, but under the reporting bar (not in final).
   j["tentative_findings"] = findings_json(r.tentative);

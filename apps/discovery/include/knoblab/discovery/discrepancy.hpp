@@ -34,6 +34,28 @@
 
 namespace knoblab::discovery {
 
+using Params = std::vector<std::pair<std::string, double>>;
+
+// The final model as a knob a simulator or renderer takes: Eq. 6 with the
+// base fit's stick band, and each kept effect with the parameters a finding
+// reports, under the effect table's names (model/effect_table.hpp), without
+// the values derived beside them: what `knoblab simulate --effects` takes. Detents with a
+// negative amplitude are turned by half a period (A > 0, S + π, odd
+// harmonics negated): the same torque, and |A| as Eq. 14 renders it.
+struct EffectTerm {
+  EffectId effect{};
+  Params params;
+};
+struct FinalKnob {
+  std::vector<double> params;  // Eq. 6, fit order (model::kThesisParamNames)
+  bool detents = false;        // the detent term is fitted (else A = 0)
+  std::optional<fit::StickBand> stick;
+  std::vector<EffectTerm> effects;
+  // A render model's knob (Eq. 14 has no detent phase): the phase is the
+  // recording's, fitted to it even where the rest is held.
+  bool detent_phase_unknown = false;
+};
+
 struct DiscrepancyOptions {
   std::size_t blocks = 32;          // contiguous time blocks, odd ones held out
   std::size_t max_rows = 6000;      // training / held-out rows used, evenly strided
@@ -50,9 +72,14 @@ struct DiscrepancyOptions {
   // n, "residual tests") and cancellation, checked in the base fit's Ceres
   // iterations and between candidates: discover() throws fit::Cancelled.
   fit::RunHooks hooks;
+  // The base from a given model (knoblab discrepancy --model: a fit's JSON,
+  // a render model or a model file, e.g. the simulation the user trusts)
+  // instead of a fit of Eq. 6: its terms, stick band and effects are held as
+  // given unless refit_base, and the search finds what the recording has
+  // that the model lacks.
+  std::optional<FinalKnob> base_model;
+  bool refit_base = false;
 };
-
-using Params = std::vector<std::pair<std::string, double>>;
 
 struct Finding {
   EffectId effect{};
@@ -109,23 +136,6 @@ struct ResidualTrace {
   std::size_t size() const { return t.size(); }
 };
 
-// The final model as a knob a simulator or renderer takes: Eq. 6 with the
-// base fit's stick band, and each kept effect with the parameters a finding
-// reports, under the effect table's names (model/effect_table.hpp), without
-// the values derived beside them: what `knoblab simulate --effects` takes. Detents with a
-// negative amplitude are turned by half a period (A > 0, S + π, odd
-// harmonics negated): the same torque, and |A| as Eq. 14 renders it.
-struct EffectTerm {
-  EffectId effect{};
-  Params params;
-};
-struct FinalKnob {
-  std::vector<double> params;  // Eq. 6, fit order (model::kThesisParamNames)
-  bool detents = false;        // the detent term is fitted (else A = 0)
-  std::optional<fit::StickBand> stick;
-  std::vector<EffectTerm> effects;
-};
-
 struct DiscrepancyResult {
   ModelSummary base, final_model;
   FinalKnob final_knob;  // final_model's terms
@@ -148,6 +158,8 @@ struct DiscrepancyResult {
     double base_Nm = 0.0, final_Nm = 0.0;
   } same_rows;
   bool heldout_recording = false;  // held out: another recording, not time blocks
+  bool base_given = false;         // the base is DiscrepancyOptions::base_model
+  bool base_held = false;          // … held as given (not refitted)
   ResidualTrace trace;
   double seconds = 0.0;
 };

@@ -22,7 +22,9 @@ namespace knoblab::discovery {
 
 // The model's terms: "params" (Eq. 6, the fit's names; missing ones 0, P_pos
 // 1), "stick" (or null), "effects" (each checked against the effect table:
-// names, ranges, what it needs). A fit's JSON (no effects) reads too; other
+// names, ranges, what it needs). A fit's JSON (no effects) reads too, and a
+// render model ("render4": M_acc, B_vel both ways, no Coulomb level, the band
+// among its params; without S_pos its detent phase is unknown); other
 // top-level fields ("render", "source", "ci95", a fit's figures) are not
 // the model's and are ignored. Throws std::invalid_argument naming `source`
 // and the field.
