@@ -176,5 +176,18 @@ TEST(DiscrepancySim, AOncePerRevolutionTorqueOnAKnobWithoutDetentsIsNotCalledDet
   EXPECT_LT(r.final_model.heldout_rmse_Nm, 0.85 * r.base.heldout_rmse_Nm);
 }
 
+
+TEST(DiscrepancySim, ASpringReturnKnobIsNamedSpringWithBothTermsAndNothingElse) {
+  // A knob without detents on a hardening return spring (0.05 N·m/rad, 0.02 N·m/rad³).
+  const auto r = discover_with("spring:stiffness_Nm_per_rad=0.05,cubic_Nm_per_rad3=0.02", "high-inertia");
+  ASSERT_EQ(r.findings.size(), 1u) << discovery::to_json(r);
+  const discovery::Finding& f = r.findings[0];
+  EXPECT_EQ(f.effect, discovery::EffectId::Spring) << discovery::to_json(r);
+  EXPECT_NEAR(param(f, "stiffness_Nm_per_rad"), 0.05, 0.005);
+  EXPECT_NEAR(param(f, "cubic_Nm_per_rad3"), 0.02, 0.005);
+  EXPECT_NEAR(param(f, "centre_rad"), 0.0, 0.02);
+  EXPECT_NE(f.explanation.find("hardening"), std::string::npos) << f.explanation;
+}
+
 }  // namespace
 }  // namespace knoblab::cli

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <stdexcept>
 
 #include "knoblab/model/effect_table.hpp"
 #include "knoblab/model/periodogram.hpp"
@@ -182,7 +183,9 @@ std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& m,
       const auto b = regress({column(train, [&](std::size_t i) { return d.theta[i] - mean; }),
                               column(train, [&](std::size_t i) { return std::pow(d.theta[i] - mean, 3); })},
                              r);
-      c = with(m, {id, {b[0], b[1]}, mean});
+      // The centre is fitted with the stiffnesses: about a wrong centre a
+      // hardening spring leaves a quadratic torque that gravity would take up.
+      c = with(m, {id, {b[0], b[1], mean}, 0.0});
       break;
     }
     case EffectId::PeriodicTorque: {
@@ -312,6 +315,14 @@ std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& m,
   // A periodic torque that settles under 1.5 cycles per revolution is
   // gravity's to name.
   if (id == EffectId::PeriodicTorque && std::abs(c->effects.back().params[1]) > 1.0 / 1.5) return std::nullopt;
+  // Fitted outside the physical range the effect table gives it (a negative
+  // Stribeck excess, a spring that pushes away, damping that feeds energy
+  // in), it is not that effect, whatever it explains.
+  try {
+    model::effect_from_params(effect_name(id), report_params(c->effects.back(), *c));
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;
+  }
   return c;
 }
 
@@ -331,7 +342,7 @@ Params report_params(const ActiveEffect& e, const ExtendedModel& m) {
       const double phase = std::remainder(q[1] + (q[0] < 0 ? kPi : 0.0), 2 * kPi);
       return named({std::abs(q[0]), phase});
     }
-    case EffectId::Spring: return named({q[0], q[1], e.setting});
+    case EffectId::Spring: return named({q[0], q[1], q[2]});
     case EffectId::PeriodicTorque:
     case EffectId::PositionFriction: return named(periodic(q[0], q[1], q[2]));
     case EffectId::DetentShape: {
@@ -401,10 +412,16 @@ Explanation explain(const ActiveEffect& e, const ExtendedModel& m, const Motion&
               format("The residual repeats once per revolution with %.3g mN·m amplitude: an "
                      "unbalanced mass or tilted axis (gravity), or a single detent per revolution.",
                      v("amplitude_Nm") * 1e3)};
-    case EffectId::Spring:
+    case EffectId::Spring: {
+      const double K3 = v("cubic_Nm_per_rad3");
+      const std::string cubic = K3 == 0.0 ? std::string()
+                                          : format(K3 > 0 ? ", stiffening by %.3g mN·m/rad³ (hardening)"
+                                                          : ", softening by %.3g mN·m/rad³",
+                                                   std::abs(K3) * 1e3);
       return {"over position, proportional to angle",
-              format("The residual grows with angle, %.3g mN·m per radian: a restoring spring.",
-                     v("stiffness_Nm_per_rad") * 1e3)};
+              format("The residual grows with angle, %.3g mN·m per radian", v("stiffness_Nm_per_rad") * 1e3) +
+                  cubic + format(", about %.3g°: a restoring spring.", v("centre_rad") * 180 / kPi)};
+    }
     case EffectId::PeriodicTorque: {
       const int k = detent_multiple(m, v("cycles_per_rev"));
       const std::string relation =

@@ -22,7 +22,7 @@ inline constexpr std::size_t kShapeHarmonics = 4;  // detent_shape: harmonics 2 
 
 // An effect in the model: continuous parameters (fitted by Ceres) and, for
 // the operators, a setting found by search on a grid (backlash width,
-// presliding angle, delay, clip limit, spring centre, drift's t0).
+// presliding angle, delay, clip limit, drift's t0).
 struct ActiveEffect {
   EffectId id{};
   std::vector<double> params;
@@ -129,7 +129,7 @@ T extended_torque(const Layout& L, const T* p, const model::ThesisModel<T>& base
           model::Spring<T> s;
           s.K = q[0];
           s.K3 = q[1];
-          s.theta0 = T(L.effects[e].setting);
+          s.theta0 = q[2];
           tau += s.torque(theta);
           break;
         }

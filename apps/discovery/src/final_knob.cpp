@@ -85,8 +85,7 @@ ExtendedModel extended_of(const FinalKnob& k) {
       case EffectId::Offset: e.params = {v("offset_Nm")}; break;
       case EffectId::Gravity: e.params = {v("amplitude_Nm"), v("phase_rad")}; break;
       case EffectId::Spring:
-        e.params = {v("stiffness_Nm_per_rad"), v("cubic_Nm_per_rad3")};
-        e.setting = v("centre_rad");
+        e.params = {v("stiffness_Nm_per_rad"), v("cubic_Nm_per_rad3"), v("centre_rad")};
         break;
       case EffectId::PeriodicTorque:
         e.params = {v("amplitude_Nm"), v("period_rad") / (2 * kPi), v("phase_rad")};

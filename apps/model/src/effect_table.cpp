@@ -19,6 +19,12 @@ using R = Role;
 constexpr EffectParam size(std::string_view name, std::string_view unit, std::string_view meaning) {
   return {.name = name, .unit = unit, .meaning = meaning, .role = R::Size};
 }
+// One that physics signs: outside its range a fitted value is not this
+// effect (discovery drops the candidate), and simulate refuses it.
+constexpr EffectParam signed_size(std::string_view name, std::string_view unit, std::string_view meaning,
+                                  std::string_view why) {
+  return {.name = name, .unit = unit, .meaning = meaning, .role = R::Size, .lo = 0.0, .why = why};
+}
 constexpr EffectParam reported(std::string_view name, std::string_view unit, std::string_view meaning,
                                std::string_view from = {}) {
   return {.name = name, .unit = unit, .meaning = meaning, .role = R::Reported, .fallback = kNone, .other = from};
@@ -39,9 +45,10 @@ constexpr EffectParam kOffset[] = {size("offset_Nm", "N·m", "the bias τ₀")};
 constexpr EffectParam kGravity[] = {size("amplitude_Nm", "N·m", "amplitude A"), phase()};
 
 constexpr EffectParam kSpring[] = {
-    size("stiffness_Nm_per_rad", "N·m/rad", "linear stiffness K"),
+    signed_size("stiffness_Nm_per_rad", "N·m/rad", "linear stiffness K",
+                "restoring: a negative stiffness pushes away from the centre (an over-centre mechanism, not a spring return)"),
     size("cubic_Nm_per_rad3", "N·m/rad³", "cubic stiffness K₃"),
-    {.name = "centre_rad", .unit = "rad", .meaning = "centre θ₀ (discrepancy: the mean position)"},
+    {.name = "centre_rad", .unit = "rad", .meaning = "centre θ₀"},
 };
 
 constexpr EffectParam kPeriodicTorque[] = {size("amplitude_Nm", "N·m", "amplitude A"), period(), cycles_per_rev(),
@@ -64,13 +71,14 @@ constexpr EffectParam kDetentShape[] = {
 };
 
 constexpr EffectParam kStribeck[] = {
-    size("static_excess_Nm", "N·m", "ΔC, static above kinetic friction"),
+    signed_size("static_excess_Nm", "N·m", "ΔC, static above kinetic friction",
+                "static friction above the kinetic: a dip near zero speed is not Stribeck friction"),
     {.name = "stribeck_velocity_rad_s", .unit = "rad/s", .meaning = "v_s, the speed it falls off over", .lo = 0.0,
      .lo_open = true, .fallback = 1.0},
 };
 
 constexpr EffectParam kNonlinearDamping[] = {
-    size("coefficient", "N·m·(s/rad)^p", "c"),
+    signed_size("coefficient", "N·m·(s/rad)^p", "c", "dissipative: a negative coefficient feeds energy in"),
     {.name = "exponent", .unit = "", .meaning = "p (2: fluid drag; < 1: grease)", .lo = 0.0, .lo_open = true, .fallback = 2.0},
 };
 

@@ -34,8 +34,7 @@ FinalKnob parse_model_file(std::string_view json_text, std::string_view source);
 // model has them) and every effect's continuous parameters, jointly (Ceres,
 // autodiff through model/effects.hpp, as discovery fits them), from the
 // model's values; the operators' settings (backlash width, delay, clip
-// limit, presliding angle, endstop position, spring centre, drift's t₀, the
-// coupling) and the stick band are held as given. Rows slower than the stick
+// limit, presliding angle, endstop position, drift's t₀, the coupling) and the stick band are held as given. Rows slower than the stick
 // band (and than 2 % of the brisk speed) are left out, as discovery leaves
 // them. Intervals: the sandwich estimate (knoblab/fit/covariance.hpp).
 struct ModelFit {
