@@ -264,6 +264,19 @@ std::vector<EffectId> implemented_effects() {
 
 namespace {
 
+// Pearson correlation over the rows where both are finite (0 when either is
+// constant there).
+double correlation(const std::vector<double>& a, const std::vector<double>& b) {
+  double n = 0, sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
+  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) {
+    if (!std::isfinite(a[i]) || !std::isfinite(b[i])) continue;
+    n += 1, sa += a[i], sb += b[i], saa += a[i] * a[i], sbb += b[i] * b[i], sab += a[i] * b[i];
+  }
+  if (n < 2) return 0.0;
+  const double va = saa - sa * sa / n, vb = sbb - sb * sb / n;
+  return va > 0 && vb > 0 ? (sab - sa * sb / n) / std::sqrt(va * vb) : 0.0;
+}
+
 // Samples slower than this are held by static friction (or inside the stick
 // band): no sliding law describes them, so they are left out.
 double slow_speed(const fit::FitData& d, const std::optional<fit::StickBand>& stick) {
@@ -419,6 +432,7 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
       ExtendedModel model;
       Score score, before;  // the candidate, and the current model on the same rows
       double gain = 0.0, t = 0.0;
+      std::vector<double> added;  // the torque it adds on the training rows (NaN: undescribed)
     };
     std::vector<Tried> tried;
     const std::string stage = "trying candidates, round " + std::to_string(round + 1);
@@ -430,8 +444,10 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
       std::optional<ExtendedModel> fitted = detail::fit_candidate(id, m, d, s.train, r_train);
       opt.hooks.check();
       if (!fitted) continue;
-      Tried t{std::move(*fitted), {}, {}, 0.0, 0.0};
+      Tried t{std::move(*fitted), {}, {}, 0.0, 0.0, {}};
       const Residuals r = residuals_of(t.model, s);
+      t.added.resize(r.train.size());
+      for (std::size_t j = 0; j < r.train.size(); ++j) t.added[j] = current_res.train[j] - r.train[j];
       t.score = score(r, current_res, s);
       t.before = score(current_res, r, s);
       t.gain = t.before.rmse_held > 0 ? 1.0 - t.score.rmse_held / t.before.rmse_held : 0.0;
@@ -450,8 +466,53 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
     const auto significant = [&](const Tried& c) {
       return c.gain >= opt.min_heldout_gain && c.t >= opt.min_t && c.score.bic < c.before.bic;
     };
-    const auto chosen = std::find_if(tried.begin(), tried.end(), significant);
+    auto chosen = std::find_if(tried.begin(), tried.end(), significant);
     if (chosen == tried.end()) break;
+    // Parsimony: of the significant candidates explaining the same residual,
+    // the one with the fewest parameters, unless a richer one is better on
+    // held-out data by the stated margin.
+    const auto same_residual = [](const Tried& a, const Tried& b) {
+      return correlation(a.added, b.added) >= 0.5;
+    };
+    const auto margin_over = [](const Tried& rich, const Tried& simple) {  // held-out RMS, relative
+      return 1.0 - (1.0 - rich.gain) / (1.0 - simple.gain);
+    };
+    const Tried* rival = nullptr;  // the chosen's runner-up on the same residual
+    for (auto c = tried.begin(); c != tried.end(); ++c) {
+      if (c == chosen || !significant(*c) || !same_residual(*c, *chosen)) continue;
+      const std::size_t nc = detail::parameter_count(c->model.effects.back());
+      const std::size_t nb = detail::parameter_count(chosen->model.effects.back());
+      if (nc < nb && margin_over(*chosen, *c) < opt.parsimony_margin) chosen = c;
+    }
+    for (auto c = tried.begin(); c != tried.end(); ++c) {
+      if (c == chosen || !significant(*c) || !same_residual(*c, *chosen)) continue;
+      if (!rival || c->gain > rival->gain) rival = &*c;
+    }
+    std::string runner_up;
+    if (rival) {
+      const ActiveEffect& re = rival->model.effects.back();
+      const std::size_t nr = detail::parameter_count(re);
+      const std::size_t nc = detail::parameter_count(chosen->model.effects.back());
+      const double better = margin_over(*chosen, *rival);  // > 0: the chosen is better
+      // Relative, as the selection compares them (each candidate against the
+      // current model on the rows both describe).
+      const double rival_over_ours = (1.0 - rival->gain) / (1.0 - chosen->gain) - 1.0;
+      char buf[320];
+      if (nr > nc && better < 0) {
+        std::snprintf(buf, sizeof buf,
+                      " Preferred to %s (%zu parameters against %zu), whose held-out RMS is %.1f %% lower, under the "
+                      "%.0f %% a richer name must win by.",
+                      std::string(effect_name(re.id)).c_str(), nr, nc, -100.0 * better, 100.0 * opt.parsimony_margin);
+      } else {
+        char how[64];
+        if (rival_over_ours >= 1.0) std::snprintf(how, sizeof how, "%.3g times as high", 1.0 + rival_over_ours);
+        else std::snprintf(how, sizeof how, "%.1f %% %s", 100.0 * std::abs(rival_over_ours),
+                           rival_over_ours >= 0 ? "higher" : "lower");
+        std::snprintf(buf, sizeof buf, " Runner-up: %s (%zu parameters), held-out RMS %s.",
+                      std::string(effect_name(re.id)).c_str(), nr, how);
+      }
+      runner_up = buf;
+    }
     std::rotate(tried.begin(), chosen, chosen + 1);  // chosen first, the rest by gain
     const Tried& best = tried.front();
     const ActiveEffect& added = best.model.effects.back();
@@ -465,8 +526,8 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
     // Confidence: how consistent the held-out gain is (t), and how clearly
     // this effect beat the runner-up (another effect explaining the same
     // residual nearly as well makes the name less certain).
-    const double runner_up = tried.size() > 1 ? std::max(0.0, tried[1].gain) : 0.0;
-    const double margin = std::clamp(1.0 - runner_up / best.gain, 0.0, 1.0);
+    const double next_gain = tried.size() > 1 ? std::max(0.0, tried[1].gain) : 0.0;
+    const double margin = std::clamp(1.0 - next_gain / best.gain, 0.0, 1.0);
     const double consistency = 1.0 - std::exp(-best.t / 4.0);
     f.confidence = std::clamp(consistency * (0.5 + 0.5 * margin), 0.0, 1.0);
     m = best.model;
@@ -477,7 +538,7 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
     const detail::Explanation ex =
         detail::explain(added, m, {reverses, detail::effect_span(d, s.train, before.train, current_res.train)});
     f.where = ex.where;
-    f.explanation = ex.sentence;
+    f.explanation = ex.sentence + runner_up;
     out.findings.push_back(std::move(f));
   }
   chain_figures(out.findings, chain, s);

@@ -34,6 +34,21 @@ struct ActiveEffect {
   bool held = false;
 };
 
+// What an effect adds to the model's freedom: its fitted parameters and, for
+// an operator, the settings searched on a grid (a coupling: stiffness and
+// damping).
+inline std::size_t parameter_count(const ActiveEffect& e) {
+  switch (e.id) {
+    case EffectId::TimeDelay:
+    case EffectId::Saturation:
+    case EffectId::Backlash:
+    case EffectId::Hysteresis:
+    case EffectId::Endstop: return e.params.size() + 1;
+    case EffectId::Compliance: return e.params.size() + 2;
+    default: return e.params.size();
+  }
+}
+
 struct ExtendedModel {
   std::vector<double> base;  // Eq. 6, fit order
   std::vector<bool> base_fitted;

@@ -61,6 +61,12 @@ struct DiscrepancyOptions {
   std::size_t max_rows = 6000;      // training / held-out rows used, evenly strided
   double min_heldout_gain = 0.02;   // held-out RMS must fall by ≥ 2 %
   double min_t = 3.0;               // … in most held-out blocks (drop_consistency)
+  // Two candidates explain the same residual when the torques they add
+  // correlate (≥ 0.5 on the training rows). Then the one with fewer
+  // parameters is named unless the richer one's held-out RMS is lower by at
+  // least this much (relative); the finding's sentence names the runner-up
+  // and the margin.
+  double parsimony_margin = 0.02;
   // A finding is a claim that the model left physics out; it is made only
   // when the terms found cut the held-out RMS (base → final) by ≥ 20 %. A
   // smaller, consistent improvement is real evidence but too weak to act on:
