@@ -185,7 +185,22 @@ std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& m,
                              r);
       // The centre is fitted with the stiffnesses: about a wrong centre a
       // hardening spring leaves a quadratic torque that gravity would take up.
-      c = with(m, {id, {b[0], b[1], mean}, 0.0});
+      // A linear spring (K₃ held at 0) is the simpler form; the cubic one
+      // must earn its parameter (BIC on the training rows).
+      if (m.flat().size() + 3 > static_cast<std::size_t>(kMaxParams)) return std::nullopt;  // no room
+      const auto b1 = regress({column(train, [&](std::size_t i) { return d.theta[i] - mean; })}, r);
+      ActiveEffect linear{id, {b1[0], 0.0, mean}, 0.0};
+      linear.fixed = 1u << 1;
+      ExtendedModel lin = with(m, linear), cub = with(m, {id, {b[0], b[1], mean}, 0.0});
+      const double n = static_cast<double>(train.size());
+      const auto bic = [&](ExtendedModel& x) {
+        const double e = fit_extended(x, d, train, 40).rmse;
+        const std::vector<bool> free = x.free_mask();
+        const auto k = static_cast<double>(std::count(free.begin(), free.end(), true));
+        return n * std::log(std::max(e * e, 1e-300)) + k * std::log(n);
+      };
+      const double bic_lin = bic(lin), bic_cub = bic(cub);
+      c = bic_cub < bic_lin ? std::move(cub) : std::move(lin);
       break;
     }
     case EffectId::PeriodicTorque: {

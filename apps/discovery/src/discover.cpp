@@ -128,7 +128,7 @@ std::size_t free_count(const ExtendedModel& m) {
   std::size_t k = 0;
   for (const bool f : m.base_fitted) k += f ? 1 : 0;
   for (const ActiveEffect& e : m.effects)
-    if (!e.held) k += e.params.size() + (e.params.empty() ? 1 : 0);
+    if (!e.held) k += detail::parameter_count(e);
   return k;
 }
 
@@ -189,6 +189,48 @@ double drop_consistency_of(const Score& before, const Score& after) {
   return drop_consistency(drop);
 }
 
+// Where a change of model acts: the held-out rows where it changes the
+// model's torque (before − after residual) by at least a tenth of its
+// largest change on the training rows (their 99th percentile of |change|).
+std::vector<char> support_of(const Residuals& before, const Residuals& after) {
+  std::vector<double> change;
+  for (std::size_t j = 0; j < before.train.size(); ++j) {
+    const double c = before.train[j] - after.train[j];
+    if (std::isfinite(c)) change.push_back(std::abs(c));
+  }
+  std::vector<char> out(before.held.size(), 0);
+  if (change.empty()) return out;
+  const double threshold = 0.1 * model::quantile(std::move(change), 0.99);
+  if (!(threshold > 0)) return out;
+  for (std::size_t j = 0; j < before.held.size(); ++j) {
+    const double c = before.held[j] - after.held[j];
+    out[j] = std::isfinite(c) && std::abs(c) >= threshold;
+  }
+  return out;
+}
+
+// Held-out RMS of `before` and `after` over the rows in `support` both describe.
+struct SupportFigures {
+  std::size_t rows = 0;
+  double before = 0.0, after = 0.0;
+  double gain() const { return before > 0 ? 1.0 - after / before : 0.0; }
+};
+SupportFigures on_support(const Residuals& before, const Residuals& after, const std::vector<char>& support) {
+  SupportFigures out;
+  double sb = 0.0, sa = 0.0;
+  for (std::size_t j = 0; j < support.size(); ++j) {
+    if (!support[j] || std::isnan(before.held[j]) || std::isnan(after.held[j])) continue;
+    sb += before.held[j] * before.held[j];
+    sa += after.held[j] * after.held[j];
+    ++out.rows;
+  }
+  if (out.rows > 0) {
+    out.before = std::sqrt(sb / static_cast<double>(out.rows));
+    out.after = std::sqrt(sa / static_cast<double>(out.rows));
+  }
+  return out;
+}
+
 // Each finding's before/after figures over the rows the base and every
 // finding's model describe (a delay or a twist leaves some out): finding k's
 // after is finding k + 1's before. Its sentence ends with the held-out pair.
@@ -212,6 +254,10 @@ void chain_figures(std::vector<Finding>& findings, const std::vector<Residuals>&
     f.bic_before = before.bic;
     f.bic_after = after.bic;
     f.heldout_rows = after.held_rows;
+    const SupportFigures where = on_support(chain[k], chain[k + 1], support_of(chain[k], chain[k + 1]));
+    f.support_rows = where.rows;
+    f.support_heldout_rmse_before_Nm = where.before;
+    f.support_heldout_rmse_after_Nm = where.after;
     char buf[200];
     std::snprintf(buf, sizeof buf, " Held-out RMS %.3g → %.3g mN·m", before.rmse_held * 1e3, after.rmse_held * 1e3);
     f.explanation += buf;
@@ -219,6 +265,12 @@ void chain_figures(std::vector<Finding>& findings, const std::vector<Residuals>&
       std::snprintf(buf, sizeof buf, ", over the %zu of %zu held-out rows %s", after.held_rows, s.held.size(),
                     findings.size() > 1 ? "every model from the base to the last finding describes"
                                         : "both models describe");
+      f.explanation += buf;
+    }
+    // An effect confined to part of the recording: its figures where it acts too.
+    if (where.rows > 0 && 2 * where.rows < after.held_rows) {
+      std::snprintf(buf, sizeof buf, "; %.3g → %.3g mN·m on the %zu held-out rows where it acts",
+                    where.before * 1e3, where.after * 1e3, where.rows);
       f.explanation += buf;
     }
     f.explanation += ".";
@@ -433,6 +485,7 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
       Score score, before;  // the candidate, and the current model on the same rows
       double gain = 0.0, t = 0.0;
       std::vector<double> added;  // the torque it adds on the training rows (NaN: undescribed)
+      SupportFigures where;       // held-out, where it acts
     };
     std::vector<Tried> tried;
     const std::string stage = "trying candidates, round " + std::to_string(round + 1);
@@ -444,10 +497,11 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
       std::optional<ExtendedModel> fitted = detail::fit_candidate(id, m, d, s.train, r_train);
       opt.hooks.check();
       if (!fitted) continue;
-      Tried t{std::move(*fitted), {}, {}, 0.0, 0.0, {}};
+      Tried t{std::move(*fitted), {}, {}, 0.0, 0.0, {}, {}};
       const Residuals r = residuals_of(t.model, s);
       t.added.resize(r.train.size());
       for (std::size_t j = 0; j < r.train.size(); ++j) t.added[j] = current_res.train[j] - r.train[j];
+      t.where = on_support(current_res, r, support_of(current_res, r));
       t.score = score(r, current_res, s);
       t.before = score(current_res, r, s);
       t.gain = t.before.rmse_held > 0 ? 1.0 - t.score.rmse_held / t.before.rmse_held : 0.0;
@@ -463,8 +517,10 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
     // breakaway transients, which a spurious delay absorbs) is no evidence of
     // a term, so it does not veto one that improves every block; it only
     // lowers the chosen one's confidence (the runner-up below).
+    // Judged over all held-out rows, or where it acts when that is a part.
     const auto significant = [&](const Tried& c) {
-      return c.gain >= opt.min_heldout_gain && c.t >= opt.min_t && c.score.bic < c.before.bic;
+      const bool local = c.where.rows >= opt.min_support_rows && c.where.gain() >= opt.min_reported_gain;
+      return (c.gain >= opt.min_heldout_gain || local) && c.t >= opt.min_t && c.score.bic < c.before.bic;
     };
     auto chosen = std::find_if(tried.begin(), tried.end(), significant);
     if (chosen == tried.end()) break;
@@ -544,7 +600,16 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
   chain_figures(out.findings, chain, s);
   // Below the reporting bar the terms found stay tentative and the final
   // model is the base (one-line rule: discrepancy.hpp, min_reported_gain).
-  if (!out.findings.empty() && current.rmse_held > (1.0 - opt.min_reported_gain) * out.base.heldout_rmse_Nm) {
+  // The bar is applied where the findings act: on the held-out rows in any
+  // finding's support, base → final.
+  std::vector<char> acts(s.held.size(), 0);
+  for (std::size_t k = 0; k + 1 < chain.size(); ++k) {
+    const std::vector<char> one = support_of(chain[k], chain[k + 1]);
+    for (std::size_t j = 0; j < acts.size(); ++j) acts[j] = acts[j] || one[j];
+  }
+  const SupportFigures together = on_support(chain.front(), chain.back(), acts);
+  const bool over_all = current.rmse_held <= (1.0 - opt.min_reported_gain) * out.base.heldout_rmse_Nm;
+  if (!out.findings.empty() && together.gain() < opt.min_reported_gain && !over_all) {
     out.tentative = std::move(out.findings);
     out.tentative_heldout_rmse_Nm = current.rmse_held;
     out.findings.clear();

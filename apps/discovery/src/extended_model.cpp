@@ -30,6 +30,14 @@ std::vector<double> ExtendedModel::flat() const {
   return p;
 }
 
+std::vector<bool> ExtendedModel::free_mask() const {
+  std::vector<bool> free = base_fitted;
+  free.resize(base.size(), false);
+  for (const ActiveEffect& e : effects)
+    for (std::size_t k = 0; k < e.params.size(); ++k) free.push_back(e.fitted(k));
+  return free;
+}
+
 void ExtendedModel::unflatten(std::span<const double> p) {
   std::size_t k = 0;
   for (double& v : base) v = p[k++];
@@ -230,9 +238,7 @@ FitReport fit_extended(ExtendedModel& m, const fit::FitData& d, std::span<const 
         static_cast<int>(len));
     problem.AddResidualBlock(cost, nullptr, p.data());
   }
-  std::vector<bool> free = m.base_fitted;
-  free.resize(m.base.size(), false);
-  for (const ActiveEffect& e : m.effects) free.insert(free.end(), e.params.size(), !e.held);
+  const std::vector<bool> free = m.free_mask();
   std::vector<int> held;
   for (std::size_t k = 0; k < static_cast<std::size_t>(kMaxParams); ++k)
     if (k >= used || !free[k]) held.push_back(static_cast<int>(k));

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <span>
 #include <string>
@@ -32,20 +33,26 @@ struct ActiveEffect {
   double lag_s = 0.0;
   // Part of a given model held fixed (discrepancy --model): not fitted.
   bool held = false;
+  // Bit k: params[k] held at its value, a nested, simpler form of the
+  // effect (a linear spring: K₃ = 0).
+  std::uint32_t fixed = 0;
+  bool fitted(std::size_t k) const { return !held && ((fixed >> k) & 1u) == 0; }
 };
 
 // What an effect adds to the model's freedom: its fitted parameters and, for
 // an operator, the settings searched on a grid (a coupling: stiffness and
 // damping).
 inline std::size_t parameter_count(const ActiveEffect& e) {
+  std::size_t n = 0;
+  for (std::size_t k = 0; k < e.params.size(); ++k) n += ((e.fixed >> k) & 1u) == 0 ? 1 : 0;
   switch (e.id) {
     case EffectId::TimeDelay:
     case EffectId::Saturation:
     case EffectId::Backlash:
     case EffectId::Hysteresis:
-    case EffectId::Endstop: return e.params.size() + 1;
-    case EffectId::Compliance: return e.params.size() + 2;
-    default: return e.params.size();
+    case EffectId::Endstop: return n + 1;
+    case EffectId::Compliance: return n + 2;
+    default: return n;
   }
 }
 
@@ -67,6 +74,7 @@ struct ExtendedModel {
   bool has_detents() const;
   const ActiveEffect* find(EffectId id) const;
   std::vector<double> flat() const;   // base then every effect's params
+  std::vector<bool> free_mask() const;  // per flat() entry: fitted (not held or fixed)
   void unflatten(std::span<const double> p);
 };
 

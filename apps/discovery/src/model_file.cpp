@@ -191,8 +191,7 @@ ModelFit fit_model(const fit::FitData& d, const FinalKnob& start, const fit::Run
   hooks.check();
   hooks.report("intervals");
   const detail::RowsJacobian rj = detail::residual_jacobian(m, d, rows);
-  std::vector<bool> fitted = m.base_fitted;
-  fitted.resize(n, true);
+  const std::vector<bool> fitted = m.free_mask();
   const fit::CovarianceEstimate cov = fit::covariance_from_rows(rj.residuals, rj.jacobian, n, fitted);
 
   ModelFit out;

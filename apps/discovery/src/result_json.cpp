@@ -30,6 +30,9 @@ nlohmann::ordered_json findings_json(const std::vector<Finding>& findings) {
                  {"heldout_rmse_before_Nm", f.heldout_rmse_before_Nm},
                  {"heldout_rmse_after_Nm", f.heldout_rmse_after_Nm},
                  {"heldout_rows", f.heldout_rows},
+                 {"support_rows", f.support_rows},
+                 {"support_heldout_rmse_before_Nm", f.support_heldout_rmse_before_Nm},
+                 {"support_heldout_rmse_after_Nm", f.support_heldout_rmse_after_Nm},
                  {"bic_before", f.bic_before},
                  {"bic_after", f.bic_after},
                  {"heldout_t", f.t_stat}});

@@ -68,10 +68,16 @@ struct DiscrepancyOptions {
   // and the margin.
   double parsimony_margin = 0.02;
   // A finding is a claim that the model left physics out; it is made only
-  // when the terms found cut the held-out RMS (base → final) by ≥ 20 %. A
-  // smaller, consistent improvement is real evidence but too weak to act on:
-  // it is reported as tentative and the final model stays the base.
+  // when the terms found cut the held-out RMS (base → final) by ≥ 20 % where
+  // they act (the held-out rows in any finding's support). A smaller,
+  // consistent improvement is real evidence but too weak to act on: it is
+  // reported as tentative and the final model stays the base. A candidate
+  // that cuts the held-out RMS by this much on its own support (at least
+  // min_support_rows rows there) is significant even when that is under
+  // min_heldout_gain over all rows: an effect on 2 % of the rows is not
+  // hidden by the other 98 %.
   double min_reported_gain = 0.20;
+  std::size_t min_support_rows = 50;
   std::size_t max_findings = 4;
   std::vector<EffectId> effects;    // candidates; empty: every implemented one
   // Progress ("fitting the base model", "trying candidates, round N" k of
@@ -100,6 +106,12 @@ struct Finding {
   double heldout_rmse_before_Nm = 0.0, heldout_rmse_after_Nm = 0.0;  // held-out rows
   double bic_before = 0.0, bic_after = 0.0;
   std::size_t heldout_rows = 0;  // the held-out rows those figures are over
+  // Where it acts: the held-out rows where the effect changes the model's
+  // torque by at least a tenth of its largest change (99th percentile over
+  // the training rows), and the held-out RMS there before and after. An
+  // effect near zero speed or after reversals is judged there.
+  std::size_t support_rows = 0;
+  double support_heldout_rmse_before_Nm = 0.0, support_heldout_rmse_after_Nm = 0.0;
   double t_stat = 0.0;       // held-out blocks' mean-square drops: drop_consistency
 };
 
