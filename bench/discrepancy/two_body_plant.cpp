@@ -77,21 +77,36 @@ struct KnobState {
   bool stuck = true;
 };
 
-// One semi-implicit Euler substep of the knob against the motor at m.
-void substep(const TwoBodyConfig& cfg, const MotorState& m, double h, KnobState& s) {
-  const TwoBodyKnob& k = cfg.knob;
-  const double drive =
-      coupling_torque(cfg.coupling, m.theta - s.theta, m.omega - s.omega).torque - position_torque(k, s.theta, s.omega);
+// Every torque on the knob but friction's: the coupling's, less the
+// position torques.
+double drive_on(const TwoBodyConfig& cfg, const MotorState& m, const KnobState& s) {
+  return coupling_torque(cfg.coupling, m.theta - s.theta, m.omega - s.omega).torque -
+         position_torque(cfg.knob, s.theta, s.omega);
+}
+
+// The knob's acceleration under `drive`: none while static friction holds a
+// standing knob; one breaking away starts from the breakaway level.
+double acceleration(const TwoBodyKnob& k, double drive, const KnobState& s) {
   if (s.stuck) {
     const double dir = sgn(drive);
-    if (std::abs(drive) <= breakaway(k, dir)) return;  // static friction balances it
+    return std::abs(drive) <= breakaway(k, dir) ? 0.0 : (drive - dir * breakaway(k, dir)) / k.inertia;
+  }
+  return (drive - sliding_friction(k, s.omega)) / k.inertia;
+}
+
+// One semi-implicit Euler substep of the knob against the motor at m.
+void substep(const TwoBodyConfig& cfg, const MotorState& m, double h, KnobState& s) {
+  const double drive = drive_on(cfg, m, s);
+  const double a = acceleration(cfg.knob, drive, s);
+  if (s.stuck) {
+    if (a == 0.0) return;  // static friction balances it
     s.stuck = false;
-    s.omega = (drive - dir * breakaway(k, dir)) / k.inertia * h;
+    s.omega = a * h;
     s.theta += s.omega * h;
     return;
   }
-  const double w = s.omega + (drive - sliding_friction(k, s.omega)) / k.inertia * h;
-  if (w * s.omega <= 0.0 && std::abs(drive) <= breakaway(k, sgn(drive))) {
+  const double w = s.omega + a * h;
+  if (w * s.omega <= 0.0 && std::abs(drive) <= breakaway(cfg.knob, sgn(drive))) {
     // The speed would cross zero here, and static friction can hold it.
     s.omega = 0.0;
     s.stuck = true;
@@ -223,6 +238,7 @@ void validate(const TwoBodyConfig& c) {
   require(std::isfinite(c.camera.rate_hz) && c.camera.rate_hz >= 1.0 && c.camera.rate_hz <= 1e5, "camera.rate_hz",
           "in [1, 100000] Hz", c.camera.rate_hz);
   require_finite_nonnegative(c.camera.torque_noise_rms, "camera.torque_noise_rms");
+  require_finite_nonnegative(c.camera.accelerometer_noise_rms, "camera.accelerometer_noise_rms");
   require(c.camera.encoder_counts_per_rev >= 0, "camera.encoder_counts_per_rev", "≥ 0 (0: exact)",
           static_cast<double>(c.camera.encoder_counts_per_rev));
   require(std::isfinite(c.seconds) && c.seconds > 0.0 && c.seconds <= 3600.0, "seconds", "in (0, 3600]", c.seconds);
@@ -263,7 +279,7 @@ TwoBodyRun run_two_body(const TwoBodyConfig& cfg) {
 
   interchange::Capture& cap = run.capture;
   TwoBodyTruth& truth = run.truth;
-  for (auto* v : {&cap.t, &cap.theta, &cap.torque, &truth.motor_theta, &truth.knob_theta, &truth.knob_omega,
+  for (auto* v : {&cap.t, &cap.theta, &cap.alpha, &cap.torque, &truth.motor_theta, &truth.knob_theta, &truth.knob_omega,
                   &truth.coupling_torque})
     v->reserve(samples);
 
@@ -279,7 +295,7 @@ TwoBodyRun run_two_body(const TwoBodyConfig& cfg) {
   for (std::size_t i = 0; i < samples; ++i) {
     const double t = static_cast<double>(i) * dt;
     const MotorState m = path.at(t);
-    double tau = 0.0;
+    double tau = 0.0, alpha = m.alpha;
     bool in_play = false;
     if (cfg.coupling.rigid()) {
       // The knob is the motor: the sensor carries all the knob's torques.
@@ -289,10 +305,12 @@ TwoBodyRun run_two_body(const TwoBodyConfig& cfg) {
       const CouplingTorque c = coupling_torque(cfg.coupling, m.theta - s.theta, m.omega - s.omega);
       tau = c.torque;
       in_play = c.in_play;
+      alpha = acceleration(k, drive_on(cfg, m, s), s);
     }
     cap.t.push_back(t);
     cap.theta.push_back(count > 0.0 ? std::floor(m.theta / count) * count : m.theta);
     cap.torque.push_back(tau + cfg.camera.torque_noise_rms * noise(rng));
+    if (cfg.camera.accelerometer) cap.alpha.push_back(alpha + cfg.camera.accelerometer_noise_rms * noise(rng));
     truth.motor_theta.push_back(m.theta);
     truth.knob_theta.push_back(s.theta);
     truth.knob_omega.push_back(s.omega);
@@ -303,11 +321,14 @@ TwoBodyRun run_two_body(const TwoBodyConfig& cfg) {
       for (int j = 0; j < run.substeps; ++j) substep(cfg, path.at(t + j * h), h, s);
   }
 
-  // ω and α as the CSV reader derives them for a file without those columns.
+  // ω, and α without an accelerometer, as the CSV reader derives them for a
+  // file without those columns.
   cap.omega = model::derivative(cap.t, cap.theta);
-  cap.alpha = model::derivative(cap.t, cap.omega);
   cap.omega_derived = true;
-  cap.alpha_derived = true;
+  if (!cfg.camera.accelerometer) {
+    cap.alpha = model::derivative(cap.t, cap.omega);
+    cap.alpha_derived = true;
+  }
   const Coupling& g = cfg.coupling;
   cap.metadata = {{"source", "knoblab-discrepancy-bench two-body plant"},
                   {"knob", cfg.knob_name},
@@ -319,6 +340,8 @@ TwoBodyRun run_two_body(const TwoBodyConfig& cfg) {
                                    ", \"play_rad\": " + num(g.play) + "}"},
                   {"torque_noise_rms_Nm", num(cfg.camera.torque_noise_rms)},
                   {"encoder_counts_per_rev", std::to_string(cfg.camera.encoder_counts_per_rev)}};
+  if (cfg.camera.accelerometer)
+    cap.metadata.emplace_back("accelerometer_noise_rms_rad_s2", num(cfg.camera.accelerometer_noise_rms));
   return run;
 }
 

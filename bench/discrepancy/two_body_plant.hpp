@@ -46,7 +46,9 @@
 //   per rev: exact), the coupling torque as the sensor between motor and
 //   coupling reads it plus white noise of RMS torque_noise_rms; ω and α are
 //   left to the reader's rule (differences of θ), as a CSV without those
-//   columns would be read: the encoder is on the motor side.
+//   columns would be read: the encoder is on the motor side. Optionally α
+//   is a knob-side accelerometer's instead: the knob's acceleration plus
+//   white noise.
 #pragma once
 
 #include <array>
@@ -112,6 +114,11 @@ struct Camera {
   double rate_hz = 5000.0;
   double torque_noise_rms = 0.1e-3;         // N·m, white
   std::int64_t encoder_counts_per_rev = 640000;  // 0: the exact angle
+  // A knob-side accelerometer, as the Haptic Camera has one: α recorded as
+  // the knob's acceleration plus white noise (rad/s² RMS). Without it α is
+  // derived from the motor encoder, like ω.
+  bool accelerometer = false;
+  double accelerometer_noise_rms = 0.0;
   std::uint64_t seed = 1;                   // noise only; the motion never depends on it
 };
 

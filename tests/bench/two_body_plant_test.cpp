@@ -186,6 +186,31 @@ TEST(TwoBodyPlant, ASoftCouplingRingsAtItsNaturalFrequencyAfterABreakaway) {
   EXPECT_NEAR(f, f_n, 0.02 * f_n);
 }
 
+TEST(TwoBodyPlant, AKnobSideAccelerometerReadsTheKnobsAccelerationNotTheMotors) {
+  TwoBodyConfig c = sticky(1e-3, 5e-3);
+  c.coupling = {20.0, Coupling::damping_for(0.03, 20.0, kJ), 0.0};
+  c.stimulus = ramp(0.5, 1.0, 200.0);
+  c.camera.accelerometer = true;
+  c.seconds = 0.2;
+  const TwoBodyRun run = bench::run_two_body(c);
+  ASSERT_FALSE(run.capture.alpha_derived);
+  ASSERT_TRUE(run.capture.omega_derived);
+  const auto& stuck = run.truth.stuck;
+  const std::size_t slip = static_cast<std::size_t>(std::find(stuck.begin(), stuck.end(), 0) - stuck.begin());
+  ASSERT_GT(slip, 0u);
+  for (std::size_t i = 0; i < slip; ++i) EXPECT_EQ(run.capture.alpha[i], 0.0) << "stuck sample " << i;
+  // Ringing after the breakaway, while the motor cruises (α = 0): the
+  // accelerometer follows the knob's speed, sample to sample.
+  double worst = 0.0, largest = 0.0;
+  for (std::size_t i = slip + 25; i < slip + 250; ++i) {
+    const double slope = (run.truth.knob_omega[i + 1] - run.truth.knob_omega[i - 1]) * c.camera.rate_hz / 2.0;
+    worst = std::max(worst, std::abs(run.capture.alpha[i] - slope));
+    largest = std::max(largest, std::abs(slope));
+  }
+  EXPECT_GT(largest, 50.0);  // rad/s²: the knob rings, the motor does not
+  EXPECT_LT(worst, 0.05 * largest);
+}
+
 TEST(TwoBodyPlant, ASettingOutsideItsRangeIsRefusedByName) {
   const auto refused = [](TwoBodyConfig c, const std::string& field) {
     try {
@@ -209,6 +234,9 @@ TEST(TwoBodyPlant, ASettingOutsideItsRangeIsRefusedByName) {
   c = {};
   c.camera.torque_noise_rms = std::nan("");
   refused(c, "camera.torque_noise_rms");
+  c = {};
+  c.camera.accelerometer_noise_rms = -1.0;
+  refused(c, "camera.accelerometer_noise_rms must be finite and ≥ 0, got -1");
   c = {};
   c.stimulus = ramp(0.5, 1.0, 20.0);
   c.stimulus.triangle.fastest_rad_s = 0.5;
