@@ -150,7 +150,7 @@ struct Options {
   std::string json_path, only;
 };
 
-// The simulator's acceptance cases (README.md, "What it does"): true when
+// The simulator's acceptance cases (README.md, same title): true when
 // every floor holds. Each case goes into j["cases"].
 bool acceptance(const Options& opt, nlohmann::json& j) {
   const std::string& only = opt.only;

@@ -1,4 +1,4 @@
-// The effect-size sweep (README.md, "Effect-size sweep"): on a plant, for
+// The effect-size sweep (README.md, "The effect-size sweep"): on a plant, for
 // each knob and each effect it carries, captures at effect/noise ratios from
 // 0.5 to 30, and what discovery names in each; the clean knobs for false
 // alarms.

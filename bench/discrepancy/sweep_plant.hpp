@@ -1,4 +1,4 @@
-// The plants the effect-size sweep captures from (README.md, "Effect-size
+// The plants the effect-size sweep captures from (README.md, "The effect-size
 // sweep"): knoblab's simulator and the independently written two-body rig,
 // each carrying the same effects in its own way, and the knobs both take.
 #pragma once

@@ -62,8 +62,9 @@ class TwoBodySweepPlant final : public SweepPlant {
         {"spring", "stiffness_Nm_per_rad", 1e-7, 0.1, 1e-3, true, true},
         {"periodic_torque", "amplitude_Nm", 1e-7, 0.05, 1e-3, true, true},
         {"detent_shape", "a2_Nm (b3_Nm = a2_Nm/2)", 1e-7, 0.05, 1e-3, true, true},
-        // The knob's own Stribeck curve, its speed widened: ΔC = D − C stays.
-        {"stribeck", "stribeck_velocity_rad_s", 0.01, 2.0, 0.1, false, true},
+        // The knob's own Stribeck curve, its speed widened (× its own, Δv/2):
+        // ΔC = D − C stays. At ×1 the knob is the clean one.
+        {"stribeck", "× the knob's own stribeck_velocity_rad_s", 1.0, 400.0, 10.0, false, true},
         {"nonlinear_damping", "drag N·m·s²/rad²", 1e-9, 0.01, 1e-4, false, true},
         {"endstop", "stiffness_Nm_per_rad (stops at ±0.9 rad)", 1e-5, 10.0, 0.05, false, true},
         {"backlash", "play_rad (in the coupling)", 1e-5, 0.02, 2e-3, false, true},
@@ -77,7 +78,7 @@ class TwoBodySweepPlant final : public SweepPlant {
     if (e.id == "periodic_torque")
       return "periodic_torque:amplitude_Nm=" + num(s) + ",period_rad=" + num(kCoggingPeriodRad) + ",phase_rad=0.3";
     if (e.id == "detent_shape") return "detent_shape:a2_Nm=" + num(s) + ",b3_Nm=" + num(s / 2);
-    if (e.id == "stribeck") return "stribeck:stribeck_velocity_rad_s=" + num(s) + " (the knob's own ΔC)";
+    if (e.id == "stribeck") return "stribeck: the knob's own curve, stribeck_velocity_rad_s ×" + num(s);
     if (e.id == "nonlinear_damping") return "nonlinear_damping:coefficient=" + num(s) + ",exponent=2";
     if (e.id == "endstop") return "endstop:position_rad=0.9,stiffness_Nm_per_rad=" + num(s);
     if (e.id == "backlash") return "backlash:width_rad=" + num(s) + " (coupling play)";
@@ -110,7 +111,7 @@ class TwoBodySweepPlant final : public SweepPlant {
       k.detent_sin[0] += s;
       k.detent_cos[1] += s / 2;
     } else if (id == "stribeck") {
-      k.stribeck_speed = s;
+      k.stribeck_speed *= s;
     } else if (id == "nonlinear_damping") {
       k.drag = s;
     } else if (id == "endstop") {
