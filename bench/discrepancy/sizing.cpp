@@ -11,23 +11,27 @@
 
 namespace knoblab::bench {
 
-namespace {
-
-// The rows discovery keeps (docs/discrepancy.md, "How it decides" 2).
-std::vector<std::size_t> analysed(const fit::FitData& d, const sim::KnobParams& knob) {
+std::vector<std::size_t> analysed_rows(const fit::FitData& d, double stick_speed) {
   std::vector<double> speed(d.size());
   for (std::size_t i = 0; i < d.size(); ++i) speed[i] = std::abs(d.omega[i]);
-  const double slow = std::max(0.02 * model::quantile(speed, 0.95), knob.stick.dv);
+  const double slow = std::max(0.02 * model::quantile(speed, 0.95), stick_speed);
   std::vector<std::size_t> rows;
   for (std::size_t i = 0; i < d.size(); ++i)
     if (speed[i] >= slow) rows.push_back(i);
   return rows;
 }
 
-double rms(const std::vector<double>& signature, const std::vector<std::size_t>& rows) {
+double rms_over(const std::vector<double>& x, const std::vector<std::size_t>& rows) {
   double s = 0.0;
-  for (const std::size_t i : rows) s += signature[i] * signature[i];
+  for (const std::size_t i : rows) s += x[i] * x[i];
   return rows.empty() ? 0.0 : std::sqrt(s / static_cast<double>(rows.size()));
+}
+
+namespace {
+
+// The rows discovery keeps for a simulated knob.
+std::vector<std::size_t> analysed(const fit::FitData& d, const sim::KnobParams& knob) {
+  return analysed_rows(d, knob.stick.dv);
 }
 
 // The setting in [lo, hi] (geometric bisection) where `reaches`, monotone
@@ -47,7 +51,7 @@ double boundary(double lo, double hi, bool increasing, int halvings, const std::
 // `target`; an end when it does not get there.
 double solve(const std::function<std::vector<double>(double)>& signature, const std::vector<std::size_t>& rows,
              double lo, double hi, double target, bool increasing) {
-  return boundary(lo, hi, increasing, 40, [&](double s) { return rms(signature(s), rows) >= target; });
+  return boundary(lo, hi, increasing, 40, [&](double s) { return rms_over(signature(s), rows) >= target; });
 }
 
 // Coulomb as the knob's sliding law has it (C_pos forward, −C_neg back).

@@ -12,12 +12,21 @@
 // reach, not the naming; where the bound holds the signature falls short.
 #pragma once
 
+#include <cstddef>
 #include <functional>
+#include <vector>
 
 #include "knoblab/fit/fit_data.hpp"
 #include "knoblab/sim/knob.hpp"
 
 namespace knoblab::bench {
+
+// The rows discovery analyses (docs/discrepancy.md, "How it decides" 2):
+// faster than 2 % of the 95th-percentile speed and than the stick band's
+// half-width `stick_speed` (rad/s).
+std::vector<std::size_t> analysed_rows(const fit::FitData& d, double stick_speed);
+// RMS of x over those rows.
+double rms_over(const std::vector<double>& x, const std::vector<std::size_t>& rows);
 
 // delay_s: τ(t) − τ(t − δ).
 double size_time_delay(const fit::FitData& clean, const sim::KnobParams& knob, double rms);
