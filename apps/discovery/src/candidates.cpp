@@ -230,8 +230,13 @@ std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& m,
       const double s95 = model::quantile(speed, 0.95);
       double best_sse = 0.0;
       std::vector<double> start;
-      for (const double f : {0.02, 0.05, 0.1, 0.2, 0.4}) {
-        const double vs = f * s95;
+      // Starting speeds over the brisk range, and down to the slowest rows
+      // when they are given (the low-speed pass: bearings' 0.01 rad/s).
+      std::vector<double> speeds;
+      for (const double f : {0.02, 0.05, 0.1, 0.2, 0.4}) speeds.push_back(f * s95);
+      const double slowest = model::quantile(speed, 0.01);
+      for (double v = 0.01 * s95; v > 2 * slowest && v > 1e-3; v /= 2.5) speeds.push_back(v);
+      for (const double vs : speeds) {
         double sse = 0.0;
         const auto b = regress({column(train, [&](std::size_t i) {
                                  const double x = d.omega[i] / vs;
