@@ -35,6 +35,12 @@ std::optional<CaptureInput> read_from(const Args& args, const std::optional<std:
   } else {
     return std::nullopt;
   }
+  // A metadata 'axis' the preparation would refuse, refused here naming the input.
+  try {
+    fit::capture_axis(in.capture);
+  } catch (const fit::FitDataError& e) {
+    throw fit::FitDataError((in.file.empty() ? in.title : in.file) + ": " + e.what());
+  }
   return in;
 }
 
@@ -58,6 +64,7 @@ fit::PrepOptions prep_options(const Args& args) {
     else throw UsageError("--alpha must be encoder or accel");
   }
   prep.filter = !args.has("no-filter");
+  if (args.has("linear")) prep.axis = fit::Axis::Linear;
   return prep;
 }
 

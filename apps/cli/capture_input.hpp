@@ -31,8 +31,15 @@ CaptureInput read_capture_input(const Args& args);
 // --heldout-capture ID (--db); none when neither is given.
 std::optional<CaptureInput> read_heldout_input(const Args& args);
 
-// The data preparation --alpha and --no-filter ask for (UsageError otherwise).
+// The data preparation --alpha, --no-filter and --linear ask for
+// (UsageError otherwise).
 fit::PrepOptions prep_options(const Args& args);
+
+// --linear: the capture is a linear actuator's (fit/axis_units.hpp), as a
+// CSV's '# axis: linear' line says.
+inline const OptionSpec kLinearOption{
+    "linear", false, "a linear axis: theta is a position in m, torque a force in N (text in mm, N, N/m); "
+                     "as the CSV line '# axis: linear'"};
 
 // Writes text and a newline to `path`, or to stdout when path is "-".
 void write_text(const std::string& path, const std::string& text);

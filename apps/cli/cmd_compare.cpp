@@ -100,10 +100,10 @@ void print_table(const CompareSide& a, const CompareSide& b, const std::vector<R
   for (const Row& r : rows) {
     // Effects' parameters ("stribeck.excess") are shown in SI.
     const bool effect = r.name.find('.') != std::string::npos;
-    const Presentation p = effect ? Presentation{"SI", 1.0} : presentation(r.name);
+    const fit::Unit p = effect ? fit::Unit{.scale = 1.0, .text = "SI"} : presentation(r.name);
     const char* verdict = !r.overlap ? "-" : *r.overlap ? "yes" : "NO";
-    std::printf("  %-24s %s %-34s %-34s %s\n", r.name.c_str(), pad(p.unit, 14).c_str(), cell(r.a, p.scale).c_str(),
-                cell(r.b, p.scale).c_str(), verdict);
+    std::printf("  %-24s %s %-34s %-34s %s\n", r.name.c_str(), pad(std::string(p.text), 14).c_str(),
+                cell(r.a, p.scale).c_str(), cell(r.b, p.scale).c_str(), verdict);
     if (r.overlap) ++judged;
     if (r.overlap == false) disjoint.push_back(r.name);
   }

@@ -24,11 +24,13 @@ const CommandSpec kDiscrepancySpec{
     "(FILE.csv | --capture ID --db FILE.sqlite) [--heldout FILE.csv | --heldout-capture ID]\n"
     "  [--json OUT.json|-] [--model-out FILE.json] [--report DIR [--format pdf,svg,png]\n"
     "  [--size 160x100mm] [--dpi 300]] [--effects LIST] [--max-findings N] [--min-gain PCT]\n"
-    "  [--model MODEL.json [--refit]]",
+    "  [--model MODEL.json [--refit]] [--linear]",
     "Find what the thesis model leaves out of a capture, and say which physics it is.\n"
     "Locates the structured residual, fits candidate effects (stribeck, backlash,\n"
     "detent_shape, periodic_torque, …) with the model, keeps those that lower the error on\n"
     "held-out time blocks, and says so (text in mN·m, degrees; the JSON in SI units). A\n"
+    "linear actuator's capture ('# axis: linear' in its CSV, or --linear) is told in N, mm,\n"
+    "N/m and mm per cycle, without gravity among the candidates (its weight is an offset). A\n"
     "capture from the store gets its result stored beside it, with the report files and\n"
     "its provenance (knoblab results). --model-out writes the final model (base and kept\n"
     "effects) as a model file that knoblab simulate --params, knoblab ctl load_model and\n"
@@ -52,6 +54,7 @@ const CommandSpec kDiscrepancySpec{
      {"refit", false, "with --model: fit the given model's terms to the recording first"},
      {"alpha", true, "accel (default: the α column, when the CSV has one) or encoder (θ'')", "accel|encoder"},
      {"no-filter", false, "skip the Table 6 low-pass filters (data already clean)"},
+     kLinearOption,
      kQuietOption}),
     0, 1, true,
     {"knoblab simulate --knob moderate-detents --effects 'stribeck:static_excess_Nm=0.004,stribeck_velocity_rad_s=0.5' "
@@ -81,18 +84,26 @@ std::vector<discovery::EffectId> parse_effects(const std::string& list) {
 }
 
 // "RMS 0.73 mN·m, held-out RMS 0.74 mN·m, fit 91.2 %, whiteness p 0.003"
-std::string figures(const discovery::ModelSummary& m) {
+std::string figures(const discovery::ModelSummary& m, const fit::AxisUnits& u) {
   char buf[200];
-  std::snprintf(buf, sizeof buf, "RMS %.4g mN·m, held-out RMS %.4g mN·m, fit %.1f %%, whiteness p ",
-                m.rmse_Nm * 1e3, m.heldout_rmse_Nm * 1e3, m.fit_percent);
+  std::snprintf(buf, sizeof buf, "RMS %s, held-out RMS %s, fit %.1f %%, whiteness p ",
+                u.torque.with(m.rmse_Nm, "%.4g").c_str(), u.torque.with(m.heldout_rmse_Nm, "%.4g").c_str(),
+                m.fit_percent);
   char p[32];
   std::snprintf(p, sizeof p, "%.2g", m.whiteness_p);
   std::string out = buf + std::string(m.whiteness_p < 1e-12 ? "< 1e-12" : p);
-  if (std::isfinite(m.forward_rmse_rad)) {
-    std::snprintf(buf, sizeof buf, ", forward θ RMS %.3g mrad", m.forward_rmse_rad * 1e3);
-    out += buf;
-  }
+  if (std::isfinite(m.forward_rmse_rad))
+    out += ", forward " + std::string(u.theta) + " RMS " + u.fine_position.with(m.forward_rmse_rad);
   return out;
+}
+
+// Gravity is once per revolution: no candidate on a linear axis.
+void check_effects_for(fit::Axis axis, const std::vector<discovery::EffectId>& effects) {
+  if (axis != fit::Axis::Linear) return;
+  for (const discovery::EffectId e : effects)
+    if (e == discovery::EffectId::Gravity)
+      throw UsageError("--effects gravity: a linear axis has no once-per-revolution torque; the weight of a "
+                       "vertical axis's carriage is a constant force, which offset describes");
 }
 
 }  // namespace
@@ -119,9 +130,6 @@ int run_discrepancy(const Args& args) {
   }
   const fit::plot::FigureOptions figure_opts = figure_options(args);  // checked before any work
   nlohmann::json options = prep_options_json(prep);
-  options["effects"] = nlohmann::json::array();
-  for (const discovery::EffectId e : opt.effects.empty() ? discovery::implemented_effects() : opt.effects)
-    options["effects"].push_back(std::string(discovery::effect_name(e)));
   options["max_findings"] = opt.max_findings;
   options["min_gain_percent"] = 100.0 * opt.min_reported_gain;
   if (given) {
@@ -140,11 +148,20 @@ int run_discrepancy(const Args& args) {
   CaptureInput in = read_capture_input(args);  // not const: its store takes the result
   progress.show("preparing");
   const fit::FitData data = fit::prepare(in.capture, prep);
+  check_effects_for(data.axis, opt.effects);
+  options["effects"] = nlohmann::json::array();
+  for (const discovery::EffectId e : opt.effects.empty() ? discovery::implemented_effects(data.axis) : opt.effects)
+    options["effects"].push_back(std::string(discovery::effect_name(e)));
   throw_if_cancelled();
   const std::optional<CaptureInput> held = read_heldout_input(args);
   options["heldout"] = held ? input_json(*held) : nlohmann::json(nullptr);
   std::optional<fit::FitData> held_data;
   if (held) held_data = fit::prepare(held->capture, prep);
+  if (held_data && held_data->axis != data.axis) {
+    throw fit::FitDataError("the held-out recording " + held->title + " is " +
+                            std::string(fit::axis_name(held_data->axis)) + ", " + in.title + " " +
+                            std::string(fit::axis_name(data.axis)) + ": one knob has one axis");
+  }
   throw_if_cancelled();
   const discovery::DiscrepancyResult r =
       held_data ? discovery::discover(data, *held_data, opt) : discovery::discover(data, opt);
@@ -164,6 +181,7 @@ int run_discrepancy(const Args& args) {
   progress.clear();
 
   const bool json_to_stdout = args.get("json") == std::optional<std::string>("-");
+  const fit::AxisUnits& u = fit::units(data.axis);
   if (!json_to_stdout) {
     std::printf("%s: %zu samples, %zu training and %zu held-out rows%s, %.2f s\n", in.title.c_str(),
                 data.size(), r.train_rows, r.heldout_rows,
@@ -173,16 +191,16 @@ int run_discrepancy(const Args& args) {
     }
     if (given) {
       std::printf("base model: %s, %s: %s\n", args.get("model")->c_str(),
-                  r.base_held ? "held as given" : "refitted from it", figures(r.base).c_str());
+                  r.base_held ? "held as given" : "refitted from it", figures(r.base, u).c_str());
     } else {
-      std::printf("base model: %s\n", figures(r.base).c_str());
+      std::printf("base model: %s\n", figures(r.base, u).c_str());
     }
     if (r.findings.empty() && r.tentative.empty())
       std::printf("no finding: nothing from the effect library improves the held-out error\n");
     if (!r.tentative.empty()) {
-      std::printf("no finding: what the library adds cuts the held-out RMS only %.4g → %.4g mN·m (%.0f %%), "
+      std::printf("no finding: what the library adds cuts the held-out RMS only %.4g → %s (%.0f %%), "
                   "under the %.0f %% a finding must earn (--min-gain); tentative:\n",
-                  r.base.heldout_rmse_Nm * 1e3, r.tentative_heldout_rmse_Nm * 1e3,
+                  u.torque(r.base.heldout_rmse_Nm), u.torque.with(r.tentative_heldout_rmse_Nm, "%.4g").c_str(),
                   100.0 * (1.0 - r.tentative_heldout_rmse_Nm / r.base.heldout_rmse_Nm),
                   100.0 * r.min_reported_gain);
       for (const discovery::Finding& f : r.tentative)
@@ -193,7 +211,7 @@ int run_discrepancy(const Args& args) {
       std::printf("- %s (confidence %.2f, %s): %s\n", std::string(discovery::effect_name(f.effect)).c_str(),
                   f.confidence, f.where.c_str(), f.explanation.c_str());
     }
-    std::printf("final model: %s\n", figures(r.final_model).c_str());
+    std::printf("final model: %s\n", figures(r.final_model, u).c_str());
     if (const std::string same = discovery::same_rows_sentence(r); !same.empty()) std::printf("%s\n", same.c_str());
   }
   if (auto out = args.get("json")) write_text(*out, json);

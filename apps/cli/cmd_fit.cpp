@@ -21,14 +21,15 @@ const CommandSpec kFitSpec{
     "fit",
     "(FILE.csv | --capture ID --db FILE.sqlite) [--model thesis6|render4|MODEL.json] [--json OUT.json|-]\n"
     "       [--report DIR [--format pdf,svg,png] [--size 160x100mm] [--dpi 300]]\n"
-    "       [--render-model OUT.json]",
+    "       [--render-model OUT.json] [--linear]",
     "Fit the knob model (thesis Eq. 6 with the Eq. 7 stick band) to a capture.\n"
     "Prints the parameters with 95% confidence intervals (text in mN·m, degrees; the JSON\n"
-    "in SI units), detents per revolution and how well the model fits; --report writes the\n"
-    "figures as PDF, SVG and PNG, each with its data as CSV (docs/figures.md). A capture\n"
-    "from the store gets its fit stored beside it, with the report files and its provenance\n"
-    "(knoblab fits, knoblab results). Ctrl-C cancels it: nothing is written or stored,\n"
-    "exit status 130.\n"
+    "in SI units), detents per revolution and how well the model fits. A linear actuator's\n"
+    "capture ('# axis: linear' in its CSV, or --linear) is told in N, mm, N·s/m and kg, its\n"
+    "detents as a period in mm. --report writes the figures as PDF, SVG and PNG, each with\n"
+    "its data as CSV (docs/figures.md). A capture from the store gets its fit stored\n"
+    "beside it, with the report files and its provenance (knoblab fits, knoblab results).\n"
+    "Ctrl-C cancels it: nothing is written or stored, exit status 130.\n"
     "--model MODEL.json fits a model file's terms instead (discrepancy --model-out: Eq. 6\n"
     "and the effects found), from its values, and --json writes the refitted model file.",
     with_figure_options({{"capture", true, "capture id in the store (instead of FILE.csv)"},
@@ -42,6 +43,7 @@ const CommandSpec kFitSpec{
      {"no-filter", false, "skip the Table 6 low-pass filters (data already clean)"},
      {"detents", true, "auto (default), yes or no", "auto|yes|no"},
      {"no-stick", false, "do not estimate the Karnopp stick band"},
+     kLinearOption,
      kQuietOption}),
     0, 1, true,
     {"knoblab simulate --knob moderate-detents --out knob.csv && knoblab fit knob.csv",

@@ -20,51 +20,45 @@ namespace knoblab::cli {
 namespace {
 
 // An effect parameter's presentation: torques (units starting "N·m") in mN·m,
-// everything else in its SI unit.
-Presentation effect_presentation(discovery::EffectId e, std::string_view name) {
+// everything else in its SI unit; on a linear axis forces in N, positions
+// in mm (fit/axis_units.hpp).
+fit::Unit effect_presentation(discovery::EffectId e, std::string_view name, fit::Axis axis) {
   const model::EffectParam* p = model::effect_row(e).param(name);
-  const std::string_view unit = p ? p->unit : std::string_view();
-  if (unit.starts_with("N·m")) {
-    static thread_local std::string milli;
-    milli = "m" + std::string(unit);
-    return {milli.c_str(), 1e3};
-  }
-  static thread_local std::string si;
-  si = unit.empty() ? "–" : std::string(unit);
-  return {si.c_str(), 1.0};
+  return fit::effect_param_unit(fit::units(axis), name, p ? p->unit : std::string_view());
 }
 
-void print_row(const std::string& name, double value, double ci, const Presentation& p) {
+void print_row(const std::string& name, double value, double ci, const fit::Unit& p) {
   char interval[64];
   if (std::isnan(ci)) {
     std::snprintf(interval, sizeof interval, "(held)");
   } else {
     std::snprintf(interval, sizeof interval, "[%.5g, %.5g]", (value - ci) * p.scale, (value + ci) * p.scale);
   }
-  std::printf("  %-32s %12.5g  %-27s %s\n", name.c_str(), value * p.scale, interval, p.unit);
+  std::printf("  %-32s %12.5g  %-27s %s\n", name.c_str(), value * p.scale, interval, std::string(p.text).c_str());
 }
 
-void print_model_fit(const discovery::ModelFit& f) {
+void print_model_fit(const discovery::ModelFit& f, fit::Axis axis) {
+  const fit::AxisUnits& u = fit::units(axis);
   std::printf("model: Eq. 6%s + %zu effect%s, %zu moving rows, %.3f s\n", f.knob.detents ? "" : " (no detents)",
               f.knob.effects.size(), f.knob.effects.size() == 1 ? "" : "s", f.rows, f.seconds);
   std::printf("  %-32s %12s  %-27s %s\n", "parameter", "value", "95% CI", "unit");
   for (std::size_t i = 0; i < f.knob.params.size() && i < model::kThesisParamCount; ++i) {
     const std::string name(model::kThesisParamNames[i]);
-    print_row(name, f.knob.params[i], f.base_ci95[i], presentation(name));
+    print_row(name, f.knob.params[i], f.base_ci95[i], presentation(name, axis));
   }
   for (std::size_t e = 0; e < f.knob.effects.size(); ++e) {
     const discovery::EffectTerm& t = f.knob.effects[e];
     const std::string id(discovery::effect_name(t.effect));
     for (std::size_t k = 0; k < t.params.size(); ++k) {
       const auto& [name, value] = t.params[k];
-      print_row(id + "." + name, value, f.effect_ci95[e][k].second, effect_presentation(t.effect, name));
+      print_row(id + "." + name, value, f.effect_ci95[e][k].second, effect_presentation(t.effect, name, axis));
     }
   }
   if (f.knob.stick) {
-    std::printf("stick band (Eq. 7, held): dv %.4g rad/s, D- %.4g mN·m, D+ %.4g mN·m\n", f.knob.stick->dv,
-                f.knob.stick->D_neg * 1e3, f.knob.stick->D_pos * 1e3);
+    std::printf("stick band (Eq. 7, held): dv %s, D- %s, D+ %s\n", u.speed.with(f.knob.stick->dv, "%.4g").c_str(),
+                u.torque.with(f.knob.stick->D_neg, "%.4g").c_str(), u.torque.with(f.knob.stick->D_pos, "%.4g").c_str());
   }
-  std::printf("rmse %.4g mN·m over the moving rows\n", f.rmse_Nm * 1e3);
+  std::printf("rmse %s over the moving rows\n", u.torque.with(f.rmse_Nm, "%.4g").c_str());
 }
 
 }  // namespace
@@ -96,7 +90,7 @@ int run_fit_model_file(const Args& args, const std::string& model_path) {
   const bool json_to_stdout = args.get("json") == std::optional<std::string>("-");
   if (!json_to_stdout) {
     std::printf("%s\n", in.title.c_str());
-    print_model_fit(f);
+    print_model_fit(f, data.axis);
   }
   if (auto out = args.get("json")) write_text(*out, json);
   if (in.db && in.capture_id) {

@@ -9,8 +9,10 @@ store::Provenance provenance_of(const std::string& input_sha256, const nlohmann:
 }
 
 nlohmann::json prep_options_json(const fit::PrepOptions& prep) {
-  return {{"alpha", prep.alpha == fit::AlphaSource::Encoder ? "encoder" : "accel"},
-          {"filter", prep.filter}};
+  nlohmann::json j = {{"alpha", prep.alpha == fit::AlphaSource::Encoder ? "encoder" : "accel"},
+                      {"filter", prep.filter}};
+  if (prep.axis) j["axis"] = std::string(fit::axis_name(*prep.axis));  // --linear
+  return j;
 }
 
 nlohmann::json fit_options_json(const fit::PrepOptions& prep, const fit::FitOptions& fit) {

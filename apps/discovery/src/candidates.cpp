@@ -7,6 +7,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "knoblab/fit/axis_units.hpp"
 #include "knoblab/model/effect_table.hpp"
 #include "knoblab/model/periodogram.hpp"
 #include "knoblab/model/quantile.hpp"
@@ -402,14 +403,39 @@ std::string ordinal(int k) {
   return std::to_string(k) + suffix;
 }
 
-constexpr const char* kOneWay = "the recording turns one way only";
-
 // k when f is within 2 % of k times the base detent frequency, else 0.
 int detent_multiple(const ExtendedModel& m, double f) {
   if (!base_has_detents(m)) return 0;
   const double ratio = f * base_period(m);
   const double k = std::round(ratio);
   return k >= 1 && std::abs(ratio - k) < 0.02 * k ? static_cast<int>(k) : 0;
+}
+
+// The period over position (SI) of a frequency in the effect table's cycles
+// per 2π of travel, and the base detents' period.
+double period_of(double cycles_per_rev) { return 2 * kPi / cycles_per_rev; }
+double detent_period(const ExtendedModel& m) { return 2 * kPi * base_period(m); }
+
+// "17.3 cycles per revolution (period 20.8°)" | "2.5 mm per cycle": the
+// period itself too when the axis presents a frequency.
+std::string repeating_at(const fit::AxisUnits& u, double period) {
+  return u.cycle.words_with(period) + (u.cycle.frequency ? " (period " + u.position.with(period) + ")" : "");
+}
+
+// A sine of the position in rad is once per revolution; in m it is a
+// trend over 6 m of travel, which is not gravity: a linear axis's carriage
+// weighs the same everywhere (offset). Gravity is no linear candidate
+// (implemented_effects(Axis)) unless a caller's own list names it.
+Explanation explain_gravity(const fit::AxisUnits& u, double amplitude) {
+  if (u.axis == fit::Axis::Linear) {
+    return {"over position, as sin(x / 1 m)",
+            "The residual follows sin(x / 1 m) with " + u.torque.with(amplitude) +
+                " amplitude: gravity's form on a rotary axis; on a linear axis gravity is a constant force "
+                "(offset), so this is a slow trend over the travel."};
+  }
+  return {"over position, once per revolution",
+          "The residual repeats once per revolution with " + u.torque.with(amplitude) +
+              " amplitude: an unbalanced mass or tilted axis (gravity), or a single detent per revolution."};
 }
 
 }  // namespace
@@ -421,119 +447,117 @@ Explanation explain(const ActiveEffect& e, const ExtendedModel& m, const Motion&
       if (n == name) return x;
     return 0.0;
   };
-  constexpr double deg = 180.0 / kPi;
+  const fit::AxisUnits& u = fit::units(motion.axis);
+  const std::string effort(u.effort), travel(u.travel), twist(u.twist), rate(u.theta_dot);
+  const std::string one_way = "the recording " + std::string(u.moves) + " one way only";
+  const auto force = [&](double si) { return u.torque.with(si); };
   switch (e.id) {
-    case EffectId::Offset:
-      return {"everywhere", format("The torque sits %.3g mN·m off zero at every position and speed: "
-                                   "a constant bias (offset), sensor zero or preload.",
-                                   v("offset_Nm") * 1e3)};
-    case EffectId::Gravity:
-      return {"over position, once per revolution",
-              format("The residual repeats once per revolution with %.3g mN·m amplitude: an "
-                     "unbalanced mass or tilted axis (gravity), or a single detent per revolution.",
-                     v("amplitude_Nm") * 1e3)};
+    case EffectId::Offset: {
+      const std::string weight =
+          motion.axis == fit::Axis::Linear ? ", or the weight of a vertical axis's carriage (gravity, on a linear axis)"
+                                           : "";
+      return {"everywhere", "The " + effort + " sits " + force(v("offset_Nm")) +
+                                " off zero at every position and speed: a constant bias (offset), sensor zero or "
+                                "preload" + weight + "."};
+    }
+    case EffectId::Gravity: return explain_gravity(u, v("amplitude_Nm"));
     case EffectId::Spring: {
       const double K3 = v("cubic_Nm_per_rad3");
       const std::string cubic = K3 == 0.0 ? std::string()
-                                          : format(K3 > 0 ? ", stiffening by %.3g mN·m/rad³ (hardening)"
-                                                          : ", softening by %.3g mN·m/rad³",
-                                                   std::abs(K3) * 1e3);
-      return {"over position, proportional to angle",
-              format("The residual grows with angle, %.3g mN·m per radian", v("stiffness_Nm_per_rad") * 1e3) +
-                  cubic + format(", about %.3g°: a restoring spring.", v("centre_rad") * 180 / kPi)};
+                                : K3 > 0  ? ", stiffening by " + u.cubic_stiffness.with(K3) + " (hardening)"
+                                          : ", softening by " + u.cubic_stiffness.with(-K3);
+      return {"over position, proportional to " + travel,
+              "The residual grows with " + travel + ", " + u.stiffness.with(v("stiffness_Nm_per_rad")) + cubic +
+                  ", about " + u.position.with(v("centre_rad")) + ": a restoring spring."};
     }
     case EffectId::PeriodicTorque: {
       const int k = detent_multiple(m, v("cycles_per_rev"));
       const std::string relation =
-          k > 1 ? format("the %s harmonic of the %.3g detents/rev, beyond what detent_shape models",
-                         ordinal(k).c_str(), 1.0 / base_period(m))
+          k > 1 ? "the " + ordinal(k) + " harmonic of the detents at " + u.cycle.with(detent_period(m)) +
+                      ", beyond what detent_shape models"
                 : std::string("unrelated to the detents");
-      return {format("over position, %.3g cycles/rev", v("cycles_per_rev")),
-              format("A second position-periodic torque at %.3g cycles per revolution (period "
-                     "%.3g°), %.3g mN·m, %s: cogging, a second detent track or screw ripple "
-                     "(periodic_torque).",
-                     v("cycles_per_rev"), v("period_rad") * deg, v("amplitude_Nm") * 1e3,
-                     relation.c_str())};
+      return {"over position, " + u.cycle.with(v("period_rad")),
+              "A second position-periodic " + effort + " at " + repeating_at(u, v("period_rad")) + ", " +
+                  force(v("amplitude_Nm")) + ", " + relation +
+                  ": cogging, a second detent track or screw ripple (periodic_torque)."};
     }
     case EffectId::DetentShape: {
       std::string harmonics;
       for (std::size_t k = 2; k <= kShapeHarmonics; ++k) {
         const std::string h = "h" + std::to_string(k);
-        harmonics += format("%s%s %.3g mN·m at %.3g cycles/rev", k == 2 ? "" : (k == kShapeHarmonics ? " and " : ", "),
-                            ordinal(static_cast<int>(k)).c_str(), v((h + "_amplitude_Nm").c_str()) * 1e3,
-                            v((h + "_cycles_per_rev").c_str()));
+        harmonics += std::string(k == 2 ? "" : (k == kShapeHarmonics ? " and " : ", ")) +
+                     ordinal(static_cast<int>(k)) + " " + force(v((h + "_amplitude_Nm").c_str())) + " at " +
+                     u.cycle.with(period_of(v((h + "_cycles_per_rev").c_str())));
       }
-      return {format("over position, harmonics of the %.3g detents/rev", v("cycles_per_rev")),
+      return {"over position, harmonics of the detents at " + u.cycle.with(detent_period(m)),
               "The detents are not sinusoidal: their harmonics are " + harmonics + " (detent_shape)."};
     }
     case EffectId::Stribeck:
-      return {format("near zero speed (|θ̇| below about %.3g rad/s)", 2 * v("stribeck_velocity_rad_s")),
-              format("Friction is %.3g mN·m above its Coulomb level near zero speed and falls off "
-                     "over %.3g rad/s: Stribeck friction.",
-                     v("static_excess_Nm") * 1e3, v("stribeck_velocity_rad_s"))};
+      return {"near zero speed (|" + rate + "| below about " + u.speed.with(2 * v("stribeck_velocity_rad_s")) + ")",
+              "Friction is " + force(v("static_excess_Nm")) + " above its Coulomb level near zero speed and falls "
+              "off over " + u.speed.with(v("stribeck_velocity_rad_s")) + ": Stribeck friction."};
     case EffectId::NonlinearDamping:
       return {"over velocity, not proportional to it",
-              format("Damping grows as |θ̇|^%.2g, not linearly: nonlinear damping.", v("exponent"))};
+              "Damping grows as |" + rate + "|^" + format("%.2g", v("exponent")) + ", not linearly: nonlinear damping."};
     case EffectId::PositionFriction:
-      return {format("over position, sign of velocity, %.3g cycles/rev", v("cycles_per_rev")),
-              format("The friction level changes with position, ±%.3g mN·m at %.3g cycles per "
-                     "revolution (position_friction).",
-                     v("depth_Nm") * 1e3, v("cycles_per_rev"))};
+      return {"over position, sign of velocity, " + u.cycle.with(v("period_rad")),
+              "The friction level changes with position, ±" + force(v("depth_Nm")) + " at " +
+                  u.cycle.words_with(v("period_rad")) + " (position_friction)."};
     case EffectId::Drift:
-      return {"over time",
-              format("The friction level changes during the recording by %.3g mN·m per second "
-                     "(drift: warming or wear).",
-                     v("rate_Nm_per_s") * 1e3)};
+      return {"over time", "The friction level changes during the recording by " + force(v("rate_Nm_per_s")) +
+                               " per second (drift: warming or wear)."};
     case EffectId::TimeDelay:
       return {"against the motion's derivatives (a lag)",
-              format("The torque channel is %.3g ms %s the motion channels (time_delay).",
-                     std::abs(v("delay_s")) * 1e3, v("delay_s") > 0 ? "behind" : "ahead of")};
+              "The " + effort + " channel is " + format("%.3g ms %s", std::abs(v("delay_s")) * 1e3,
+                                                        v("delay_s") > 0 ? "behind" : "ahead of") +
+                  " the motion channels (time_delay)."};
     case EffectId::Saturation:
-      return {"at the torque extremes",
-              format("The torque is clipped at ±%.3g mN·m (sensor saturation).", v("limit_Nm") * 1e3)};
-    case EffectId::Backlash:
+      return {"at the " + effort + " extremes",
+              "The " + effort + " is clipped at ±" + force(v("limit_Nm")) + " (sensor saturation)."};
+    case EffectId::Backlash: {
+      const double w = v("width_rad");
       if (!motion.reverses) {
-        return {motion.span + " (" + kOneWay + ")",
-                format("Lost motion of %.3g mrad (%.3g°) between the drive and the detent mechanism (backlash), "
-                       "felt most at %s; %s.",
-                       v("width_rad") * 1e3, v("width_rad") * deg, motion.span.c_str(), kOneWay)};
+        return {motion.span + " (" + one_way + ")",
+                "Lost motion of " + u.fine_position.with(w) + " (" + u.position.with(w) +
+                    ") between the drive and the detent mechanism (backlash), felt most at " + motion.span + "; " +
+                    one_way + "."};
       }
-      return {"after reversals",
-              format("After every reversal the torque falls toward zero for %.3g° of travel: "
-                     "backlash (lost motion) of %.3g mrad between the drive and the detent "
-                     "mechanism.",
-                     v("width_rad") * deg, v("width_rad") * 1e3)};
-    case EffectId::Hysteresis:
+      return {"after reversals", "After every reversal the " + effort + " falls toward zero for " +
+                                     u.position.with(w) + " of travel: backlash (lost motion) of " +
+                                     u.fine_position.with(w) + " between the drive and the detent mechanism."};
+    }
+    case EffectId::Hysteresis: {
+      // Friction turns over within about three presliding lengths.
+      const std::string within = u.fine_position.with(3 * v("presliding_angle_rad"));
       if (!motion.reverses) {
-        return {motion.span + " (" + kOneWay + ")",
-                format("Friction turns over within about %.3g mrad instead of jumping (presliding hysteresis, "
-                       "Dahl), felt most at %s; %s.",
-                       3e3 * v("presliding_angle_rad"), motion.span.c_str(), kOneWay)};
+        return {motion.span + " (" + one_way + ")",
+                "Friction turns over within about " + within + " instead of jumping (presliding hysteresis, "
+                "Dahl), felt most at " + motion.span + "; " + one_way + "."};
       }
-      return {"after reversals",
-              format("After a reversal friction turns over within about %.3g mrad instead of "
-                     "jumping: presliding hysteresis (Dahl).",
-                     3e3 * v("presliding_angle_rad"))};
+      return {"after reversals", "After a reversal friction turns over within about " + within +
+                                     " instead of jumping: presliding hysteresis (Dahl)."};
+    }
     case EffectId::Endstop:
       return {"at the extremes of the travel",
-              format("Beyond ±%.3g° the torque climbs by %.3g mN·m per radian: a hard stop (endstop).",
-                     v("position_rad") * deg, v("stiffness_Nm_per_rad") * 1e3)};
+              "Beyond ±" + u.position.with(v("position_rad")) + " the " + effort + " climbs by " +
+                  u.stiffness.with(v("stiffness_Nm_per_rad")) + ": a hard stop (endstop)."};
     case EffectId::Compliance: {
       // A damping ratio of 1 or more does not ring: the twist follows the
       // torque through its lag c/k, whose corner is k/(2π·c).
       const bool rings = v("zeta") < 1.0;
       const std::string dynamics =
-          rings ? format("damping ratio %.2g), ringing near %.3g Hz with the knob's inertia", v("zeta"),
-                         v("frequency_hz"))
-                : format("damping ratio %.2g: %s, no ringing), the twist following the torque with "
-                         "a corner near %.3g Hz",
-                         v("zeta"), v("zeta") > 1.0 ? "overdamped" : "critically damped",
-                         v("stiffness_Nm_per_rad") / (2 * kPi * v("damping_Nm_s_per_rad")));
-      const std::string sentence = format("The knob lags the motor by the coupling's twist: %.3g N·m/rad (%s "
-                                          "(compliance between actuator and knob)",
-                                          v("stiffness_Nm_per_rad"), dynamics.c_str());
+          rings ? format("damping ratio %.2g), ringing near %.3g Hz with the knob's ", v("zeta"), v("frequency_hz")) +
+                      std::string(u.mass)
+                : format("damping ratio %.2g: %s, no ringing), the ", v("zeta"),
+                         v("zeta") > 1.0 ? "overdamped" : "critically damped") +
+                      twist + " following the " + effort +
+                      format(" with a corner near %.3g Hz",
+                             v("stiffness_Nm_per_rad") / (2 * kPi * v("damping_Nm_s_per_rad")));
+      const std::string sentence = "The knob lags the motor by the coupling's " + twist + ": " +
+                                   u.coupling_stiffness.with(v("stiffness_Nm_per_rad")) + " (" + dynamics +
+                                   " (compliance between actuator and knob)";
       if (!motion.reverses)
-        return {motion.span + " (" + kOneWay + ")", sentence + ", felt most at " + motion.span + "; " + kOneWay + "."};
+        return {motion.span + " (" + one_way + ")", sentence + ", felt most at " + motion.span + "; " + one_way + "."};
       return {rings ? "after reversals and breakaways (ringing)" : "after reversals and breakaways",
               sentence + "."};
     }

@@ -21,19 +21,23 @@ std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& cur
                                            std::span<const std::size_t> train,
                                            const std::vector<double>& residual);
 
-// An effect's parameters as reported (SI; periods also as cycles/rev).
+// An effect's parameters as reported (SI; periods also as cycles/rev: on a
+// linear axis per 2π m).
 Params report_params(const ActiveEffect& e, const ExtendedModel& m);
 
 // What a finding's sentences may say of the recording: whether it reverses
-// (motion.hpp), and where the effect changed the model's torque most.
+// (motion.hpp), where the effect changed the model's torque most, and its
+// axis (the units the sentences speak in).
 struct Motion {
   bool reverses = true;
   std::string span;  // "t 0.02–0.31 s, θ −57…−40°" (motion.hpp)
+  fit::Axis axis = fit::Axis::Rotary;
 };
 
 // Where the residual was structured, and a sentence of what the effect is,
-// with its parameters (presentation units; the held-out figures are added
-// by discover()).
+// with its parameters (presentation units of the axis, fit/axis_units.hpp:
+// mN·m, degrees, cycles/rev; N, mm, mm per cycle; the held-out figures are
+// added by discover()).
 struct Explanation {
   std::string where, sentence;
 };

@@ -234,7 +234,8 @@ SupportFigures on_support(const Residuals& before, const Residuals& after, const
 // Each finding's before/after figures over the rows the base and every
 // finding's model describe (a delay or a twist leaves some out): finding k's
 // after is finding k + 1's before. Its sentence ends with the held-out pair.
-void chain_figures(std::vector<Finding>& findings, const std::vector<Residuals>& chain, const Split& s) {
+void chain_figures(std::vector<Finding>& findings, const std::vector<Residuals>& chain, const Split& s,
+                   const fit::Unit& torque) {
   Residuals common{std::vector<double>(s.train.size(), 0.0), std::vector<double>(s.held.size(), 0.0), 0};
   for (const Residuals& r : chain) {
     for (std::size_t j = 0; j < r.train.size(); ++j)
@@ -259,7 +260,7 @@ void chain_figures(std::vector<Finding>& findings, const std::vector<Residuals>&
     f.support_heldout_rmse_before_Nm = where.before;
     f.support_heldout_rmse_after_Nm = where.after;
     char buf[200];
-    std::snprintf(buf, sizeof buf, " Held-out RMS %.3g → %.3g mN·m", before.rmse_held * 1e3, after.rmse_held * 1e3);
+    std::snprintf(buf, sizeof buf, " Held-out RMS %.3g → %s", torque(before.rmse_held), torque.with(after.rmse_held).c_str());
     f.explanation += buf;
     if (after.held_rows < s.held.size()) {
       std::snprintf(buf, sizeof buf, ", over the %zu of %zu held-out rows %s", after.held_rows, s.held.size(),
@@ -269,8 +270,8 @@ void chain_figures(std::vector<Finding>& findings, const std::vector<Residuals>&
     }
     // An effect confined to part of the recording: its figures where it acts too.
     if (where.rows > 0 && 2 * where.rows < after.held_rows) {
-      std::snprintf(buf, sizeof buf, "; %.3g → %.3g mN·m on the %zu held-out rows where it acts",
-                    where.before * 1e3, where.after * 1e3, where.rows);
+      std::snprintf(buf, sizeof buf, "; %.3g → %s on the %zu held-out rows where it acts", torque(where.before),
+                    torque.with(where.after).c_str(), where.rows);
       f.explanation += buf;
     }
     f.explanation += ".";
@@ -390,6 +391,7 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
   const auto t0 = std::chrono::steady_clock::now();
   if (d.size() < 200 || h.size() < 200) throw fit::FitDataError("too few samples for discrepancy discovery");
   DiscrepancyResult out;
+  out.axis = d.axis;
   out.heldout_recording = &d != &h;
   out.min_reported_gain = opt.min_reported_gain;
 
@@ -475,7 +477,7 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
   // one that turns back by more than 1 % of its range.
   const bool reverses = detail::count_reversals(d.theta, 0.01 * (*hi - *lo)) > 0;
 
-  const std::vector<EffectId> pool = opt.effects.empty() ? implemented_effects() : opt.effects;
+  const std::vector<EffectId> pool = opt.effects.empty() ? implemented_effects(d.axis) : opt.effects;
   for (int round = 0; out.findings.size() < opt.max_findings; ++round) {
     // Rows the model does not describe add nothing to a candidate's start.
     std::vector<double> r_train = current_res.train;
@@ -592,12 +594,12 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
     chain.push_back(current_res);
 
     const detail::Explanation ex =
-        detail::explain(added, m, {reverses, detail::effect_span(d, s.train, before.train, current_res.train)});
+        detail::explain(added, m, {reverses, detail::effect_span(d, s.train, before.train, current_res.train), d.axis});
     f.where = ex.where;
     f.explanation = ex.sentence + runner_up;
     out.findings.push_back(std::move(f));
   }
-  chain_figures(out.findings, chain, s);
+  chain_figures(out.findings, chain, s, fit::units(d.axis).torque);
   // Below the reporting bar the terms found stay tentative and the final
   // model is the base (one-line rule: discrepancy.hpp, min_reported_gain).
   // The bar is applied where the findings act: on the held-out rows in any

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <numbers>
+#include <string>
 
 namespace knoblab::discovery::detail {
 
@@ -47,10 +47,11 @@ std::string effect_span(const fit::FitData& d, std::span<const std::size_t> rows
   const std::size_t from = at(0.05), to = std::min(at(0.95), rows.size() - 1);
   double lo = d.theta[rows[from]], hi = lo;
   for (std::size_t j = from; j <= to; ++j) lo = std::min(lo, d.theta[rows[j]]), hi = std::max(hi, d.theta[rows[j]]);
-  constexpr double deg = 180.0 / std::numbers::pi;
+  const fit::AxisUnits& u = fit::units(d.axis);
   char buf[160];
-  std::snprintf(buf, sizeof buf, "t %.3g–%.3g s, θ %.3g…%.3g°", d.t[rows[from]], d.t[rows[to]], lo * deg, hi * deg);
-  return buf;
+  std::snprintf(buf, sizeof buf, "t %.3g–%.3g s, %s %.3g…", d.t[rows[from]], d.t[rows[to]],
+                std::string(u.theta).c_str(), u.position(lo));
+  return buf + u.position.with(hi);
 }
 
 }  // namespace knoblab::discovery::detail

@@ -18,7 +18,7 @@ namespace knoblab::discovery::detail {
 // at a breakaway are no reversal.
 std::size_t count_reversals(std::span<const double> theta, double travel);
 
-// "t 0.02–0.31 s, θ −57…−40°": where the rows `rows` of `d` (in time order)
+// "t 0.02–0.31 s, θ −57…−40°" ("x −5.1…−4 mm" on a linear axis): where the rows `rows` of `d` (in time order)
 // hold the middle 90 % of the squared change from residual `before` to
 // `after` (rows where either is NaN left out); "" when nothing changed.
 std::string effect_span(const fit::FitData& d, std::span<const std::size_t> rows,

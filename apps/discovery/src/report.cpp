@@ -7,7 +7,6 @@
 #include <iterator>
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -30,15 +29,16 @@ using plot::Mark;
 using plot::Panel;
 namespace palette = plot::palette;
 
-constexpr double kmNm = 1e3;  // N·m → mN·m, at the edge only
-constexpr double kDeg = 180.0 / std::numbers::pi;
 constexpr const char* kWho = "knoblab::discovery::write_discrepancy_report: ";
 
 struct Inputs {
   const DiscrepancyResult& r;
   const ReportOptions& opt;
   ResidualFigures before, after;
+  const fit::AxisUnits& u;  // SI → the figures' units (mN·m, deg; N, mm), at the edge only
 };
+
+std::string str(std::string_view s) { return std::string(s); }
 
 std::string fmt(const char* f, double v) {
   char buf[64];
@@ -72,16 +72,16 @@ std::string added_effects(const DiscrepancyResult& r) {
   return s;
 }
 
-// A panel's ± y limit (mN·m): its own residual's 99.5th percentile of |r|,
-// so a few transients do not flatten it, and the after panel, with less
-// left to show, is not drawn at the before panel's scale.
-double residual_limit(const std::vector<double>& res) {
+// A panel's ± y limit (presented, mN·m or N): its own residual's 99.5th
+// percentile of |r|, so a few transients do not flatten it, and the after
+// panel, with less left to show, is not drawn at the before panel's scale.
+double residual_limit(const std::vector<double>& res, const fit::Unit& torque) {
   std::vector<double> a;
   a.reserve(res.size());
   for (const double v : res)
     if (std::isfinite(v)) a.push_back(std::abs(v));
   if (a.empty()) return 1.0;
-  const double lim = 1.1 * kmNm * model::quantile(std::move(a), 0.995);
+  const double lim = 1.1 * torque(model::quantile(std::move(a), 0.995));
   return lim > 0.0 ? lim : 1.0;
 }
 
@@ -106,13 +106,15 @@ Panel residual_panel(const Inputs& in, const std::vector<double>& x, const std::
   p.name = std::move(name);
   p.heading = std::move(heading);
   p.xlabel = xlabel;
-  p.ylabel = "residual (mN·m)";
-  const double limit = residual_limit(res);
+  const fit::Unit& torque = in.u.torque;
+  p.ylabel = "residual (" + str(torque.axis_label()) + ")";
+  const double limit = residual_limit(res, torque);
   p.y_lo = -limit;
   p.y_hi = limit;
   std::size_t beyond = 0;
-  for (const double v : res) beyond += std::abs(kmNm * v) > limit ? 1 : 0;
-  if (beyond > 0) p.heading += " (" + std::to_string(beyond) + " beyond ±" + fmt("%.3g", limit) + " mN·m)";
+  for (const double v : res) beyond += std::abs(torque(v)) > limit ? 1 : 0;
+  if (beyond > 0)
+    p.heading += " (" + std::to_string(beyond) + " beyond ±" + fmt("%.3g", limit) + " " + str(torque.text) + ")";
   plot::Series train = dots("training_rows", "training rows", palette::kRaw, 0.35, 0);
   plot::Series held = dots("heldout_rows", "held-out rows", palette::kBlue, 0.35, 1);
   // The model's part over the data, small and translucent: the residual stays visible.
@@ -122,10 +124,10 @@ Panel residual_panel(const Inputs& in, const std::vector<double>& x, const std::
   for (const std::size_t i : plot::thin(tr.size(), in.opt.max_points)) {
     plot::Series& s = tr.heldout[i] ? held : train;
     s.x.push_back(x[i]);
-    s.y.push_back(kmNm * res[i]);
+    s.y.push_back(torque(res[i]));
     if (added) {
       add.x.push_back(x[i]);
-      add.y.push_back(kmNm * (*added)[i]);
+      add.y.push_back(torque((*added)[i]));
     }
   }
   const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
@@ -150,14 +152,14 @@ plot::Figure residual_figure(const Inputs& in, const std::vector<double>& x, con
     added.resize(r.trace.size());
     for (std::size_t i = 0; i < added.size(); ++i) added[i] = r.trace.before[i] - r.trace.after[i];
   }
-  auto figures = [](const ModelSummary& m) {
-    return "held-out RMS " + fmt("%.4g", m.heldout_rmse_Nm * kmNm) + " mN·m, fit " + fmt("%.1f", m.fit_percent) + " %";
+  auto figures = [&in](const ModelSummary& m) {
+    return "held-out RMS " + in.u.torque.with(m.heldout_rmse_Nm, "%.4g") + ", fit " + fmt("%.1f", m.fit_percent) + " %";
   };
   plot::Figure f;
   f.title = titled(in, "residual against " + what + ", before and after");
   f.subtitle = rows_subtitle(in);
   f.x_column = std::move(x_column);
-  f.y_column = "residual_mNm";
+  f.y_column = "residual_" + str(in.u.torque.column_suffix());
   f.panels.push_back(residual_panel(in, x, r.trace.before, added.empty() ? nullptr : &added, "before",
                                     "Before: base model (Eq. 6) — " + figures(r.base), xlabel));
   const std::string final_name = !r.findings.empty()    ? "+ " + added_effects(r)
@@ -223,9 +225,10 @@ plot::Figure whiteness_figure(const Inputs& in) {
   const TraceRows& rows = in.before.rows;
   const std::string spacing = fmt("%.3g", rows.row_spacing_s * 1e3);
   plot::Figure f;
-  f.title = titled(in, "residual whiteness (Ljung–Box) and independence of ω");
+  const std::string omega(in.u.omega);
+  f.title = titled(in, "residual whiteness (Ljung–Box) and independence of " + omega);
   f.subtitle = std::string(rows.heldout ? "held-out rows" : "all rows") + ", lags in rows of " + spacing +
-               " ms; 99 % bands shaded; p < 0.01: not white / depends on ω";
+               " ms; 99 % bands shaded; p < 0.01: not white / depends on " + omega;
   f.columns = 2;
   f.x_column = "lag_rows";
   f.y_column = "correlation";
@@ -240,10 +243,10 @@ plot::Figure whiteness_figure(const Inputs& in) {
   f.panels.push_back(correlation_panel(a.whiteness, "autocorrelation_after",
                                        "Autocorrelation, after — p " + format_p(a.whiteness.p), xlabel, wl));
   f.panels.push_back(correlation_panel(b.independence, "velocity_correlation_before",
-                                       "Correlation with ω, before — p " + format_p(b.independence.p), xlabel,
+                                       "Correlation with " + omega + ", before — p " + format_p(b.independence.p), xlabel,
                                        il));
   f.panels.push_back(correlation_panel(a.independence, "velocity_correlation_after",
-                                       "Correlation with ω, after — p " + format_p(a.independence.p), xlabel,
+                                       "Correlation with " + omega + ", after — p " + format_p(a.independence.p), xlabel,
                                        il));
   return f;
 }
@@ -276,9 +279,9 @@ void check(const DiscrepancyResult& r, const ReportOptions& opt) {
   if (opt.max_points == 0) throw std::invalid_argument(std::string(kWho) + "max_points must be positive");
 }
 
-std::vector<double> degrees(const std::vector<double>& v) {
+std::vector<double> presented(const std::vector<double>& v, const fit::Unit& unit) {
   std::vector<double> out(v.size());
-  for (std::size_t i = 0; i < v.size(); ++i) out[i] = kDeg * v[i];
+  for (std::size_t i = 0; i < v.size(); ++i) out[i] = unit(v[i]);
   return out;
 }
 
@@ -290,14 +293,20 @@ struct Report {
 
 Report build(const fit::FitData& data, const DiscrepancyResult& r, const ReportOptions& opt) {
   check(r, opt);
-  const Inputs in{r, opt, residual_figures(r.trace, r.trace.before), residual_figures(r.trace, r.trace.after)};
+  const fit::AxisUnits& u = fit::units(r.axis);
+  const Inputs in{r, opt, residual_figures(r.trace, r.trace.before), residual_figures(r.trace, r.trace.after), u};
   const detail::SummaryText text = detail::summary_text(data, r, in.before, in.after);
+  const auto label = [](std::string_view what, std::string_view symbol, const fit::Unit& unit) {
+    return str(what) + " " + str(symbol) + " (" + str(unit.axis_label()) + ")";
+  };
   Report out;
   out.figures = {
-      {"residual_position",
-       residual_figure(in, degrees(r.trace.theta), "position", "position θ (deg)", "position_deg")},
-      {"residual_velocity", residual_figure(in, degrees(r.trace.omega), "velocity", "velocity ω (deg/s)",
-                                            "velocity_deg_per_s")},
+      {"residual_position", residual_figure(in, presented(r.trace.theta, u.position), "position",
+                                            label("position", u.theta, u.position),
+                                            "position_" + str(u.position.column_suffix()))},
+      {"residual_velocity", residual_figure(in, presented(r.trace.omega, u.plot_speed), "velocity",
+                                            label("velocity", u.omega, u.plot_speed),
+                                            "velocity_" + str(u.plot_speed.column_suffix()))},
       {"residual_time", residual_figure(in, r.trace.t, "time", "time (s)", "time_s")},
       {"whiteness", whiteness_figure(in)},
       {"summary", summary_figure(in, text)},

@@ -1,5 +1,5 @@
 // The summary table and sentences (report_summary.hpp). SI inside, mN·m
-// only here, where the text is made.
+// (N on a linear axis) only here, where the text is made.
 #include "report_summary.hpp"
 
 #include <algorithm>
@@ -10,7 +10,6 @@ namespace knoblab::discovery::detail {
 
 namespace {
 
-constexpr double kmNm = 1e3;
 constexpr const char* kDash = "–";
 
 std::string fmt(const char* f, double v) {
@@ -41,14 +40,17 @@ std::string format_p(double p) {
 SummaryText summary_text(const fit::FitData& data, const DiscrepancyResult& r,
                          const ResidualFigures& before, const ResidualFigures& after) {
   SummaryText s;
-  s.table.push_back({"model", "RMS\nmN·m", "held-out\nRMS mN·m",
+  const fit::AxisUnits& u = fit::units(r.axis);
+  const fit::Unit& torque = u.torque;
+  const std::string tq(torque.text), omega(u.omega), theta(u.theta);
+  s.table.push_back({"model", "RMS\n" + tq, "held-out\nRMS " + tq,
                      before.rows.heldout ? "fit %\nheld-out" : "fit %\nall rows", "BIC",
-                     "white\np", "ω-indep.\np", "forward θ\nRMS mrad"});
+                     "white\np", omega + "-indep.\np", "forward " + theta + "\nRMS " + std::string(u.fine_position.text)});
   auto row = [&](std::string name, const ModelSummary& m) {
-    s.table.push_back({std::move(name), fmt("%.4g", m.rmse_Nm * kmNm),
-                       fmt("%.4g", m.heldout_rmse_Nm * kmNm), fmt("%.1f", m.fit_percent),
+    s.table.push_back({std::move(name), fmt("%.4g", torque(m.rmse_Nm)),
+                       fmt("%.4g", torque(m.heldout_rmse_Nm)), fmt("%.1f", m.fit_percent),
                        fmt("%.0f", m.bic), format_p(m.whiteness_p), format_p(m.independence_p),
-                       std::isfinite(m.forward_rmse_rad) ? fmt("%.3g", m.forward_rmse_rad * 1e3) : kDash});
+                       std::isfinite(m.forward_rmse_rad) ? fmt("%.3g", u.fine_position(m.forward_rmse_rad)) : kDash});
   };
   row("base (Eq. 6)", r.base);
   const double spread = before.rows.heldout && !before.rows.rows.empty()
@@ -63,8 +65,8 @@ SummaryText summary_text(const fit::FitData& data, const DiscrepancyResult& r,
     }
     // Only the error figures are known here: the trace keeps the base's and
     // the final model's residuals.
-    s.table.push_back({name, fmt("%.4g", f.rmse_after_Nm * kmNm),
-                       fmt("%.4g", f.heldout_rmse_after_Nm * kmNm),
+    s.table.push_back({name, fmt("%.4g", torque(f.rmse_after_Nm)),
+                       fmt("%.4g", torque(f.heldout_rmse_after_Nm)),
                        fmt("%.1f", 100.0 * (1.0 - f.heldout_rmse_after_Nm / spread)),
                        fmt("%.0f", f.bic_after), kDash, kDash, kDash});
   }
@@ -79,19 +81,22 @@ SummaryText summary_text(const fit::FitData& data, const DiscrepancyResult& r,
   if (!r.tentative.empty()) {
     const double gain = 1.0 - r.tentative_heldout_rmse_Nm / r.base.heldout_rmse_Nm;
     s.findings.push_back("Nothing is reported: the terms below lower the held-out RMS consistently, but only by " +
-                         fmt("%.0f", 100.0 * gain) + " % together (" + fmt("%.4g", r.base.heldout_rmse_Nm * kmNm) +
-                         " → " + fmt("%.4g", r.tentative_heldout_rmse_Nm * kmNm) + " mN·m), under the " +
+                         fmt("%.0f", 100.0 * gain) + " % together (" + fmt("%.4g", torque(r.base.heldout_rmse_Nm)) +
+                         " → " + torque.with(r.tentative_heldout_rmse_Nm, "%.4g") + "), under the " +
                          fmt("%.0f", 100.0 * r.min_reported_gain) +
                          " % a finding must earn. They are tentative; the final model is the base:");
     for (std::size_t k = 0; k < r.tentative.size(); ++k)
       s.findings.push_back("(" + std::to_string(k + 1) + ") " + r.tentative[k].explanation);
   }
 
+  const std::string effort(u.effort), travel(u.travel);
+  const bool linear = r.axis == fit::Axis::Linear;
   s.notes.push_back(
-      "Forward view: the model driven by the measured torque over 20 ms windows begun from the "
-      "measured angle and speed on the held-out rows (M·θ̈ = τ − the model's other terms); "
-      "forward θ RMS is the simulated − measured angle. – when the fitted inertia is not "
-      "positive or the model runs away (a radian off within a window).");
+      "Forward view: the model driven by the measured " + effort + " over 20 ms windows begun from the "
+      "measured " + travel + " and speed on the held-out rows (M·" + std::string(u.alpha) + " = " + std::string(u.tau) +
+      " − the model's other terms); forward " + theta + " RMS is the simulated − measured " + travel +
+      ". – when the fitted " + std::string(u.mass) + " is not positive or the model runs away (" +
+      (linear ? "a metre" : "a radian") + " off within a window).");
   const std::string held = r.heldout_recording ? "another recording" : "odd time blocks";
   s.notes.push_back("RMS and BIC over the " + std::to_string(r.train_rows) +
                     " training rows, held-out RMS over the " + std::to_string(r.heldout_rows) +
@@ -107,12 +112,12 @@ SummaryText summary_text(const fit::FitData& data, const DiscrepancyResult& r,
   s.notes.push_back("Whiteness: Ljung–Box Q of the autocorrelation at lags 1…" +
                     std::to_string(before.whiteness.lags.size()) + " (" +
                     fmt("%.0f", before.whiteness.dof) +
-                    " dof). Independence: the cross-correlation with ω at lags ±" +
+                    " dof). Independence: the cross-correlation with " + omega + " at lags ±" +
                     std::to_string(before.whiteness.lags.size()) +
                     ", allowing for the residual's own autocorrelation (" +
                     fmt("%.0f", before.independence.dof) + " and " +
                     fmt("%.0f", after.independence.dof) +
-                    " dof before and after). p below 0.01: not white, or not independent of ω.");
+                    " dof before and after). p below 0.01: not white, or not independent of " + omega + ".");
   if (const std::string same = same_rows_sentence(r); !same.empty()) s.notes.push_back(same);
   if (r.findings.size() > 1)
     s.notes.push_back("–: only the error figures are known between findings (the residuals kept "

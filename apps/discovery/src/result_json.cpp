@@ -44,6 +44,8 @@ nlohmann::ordered_json findings_json(const std::vector<Finding>& findings) {
 
 std::string to_json(const DiscrepancyResult& r, int indent) {
   nlohmann::ordered_json j;
+  // Still SI; a linear axis's readers take rad as m and N·m as N.
+  if (r.axis == fit::Axis::Linear) j["axis"] = fit::axis_name(r.axis);
   j["base"] = {{"params", params_json(r.base.params)},
                {"rmse_Nm", r.base.rmse_Nm},
                {"heldout_rmse_Nm", r.base.heldout_rmse_Nm},
@@ -90,12 +92,14 @@ std::string to_json(const DiscrepancyResult& r, int indent) {
 std::string same_rows_sentence(const DiscrepancyResult& r) {
   const std::size_t base = r.base.heldout_rows, final = r.final_model.heldout_rows, both = r.same_rows.rows;
   if ((both == base && both == final) || !std::isfinite(r.same_rows.base_Nm)) return "";
+  const fit::AxisUnits& u = fit::units(r.axis);
   char buf[400];
   std::snprintf(buf, sizeof buf,
                 "The base model describes %zu held-out rows, the final %zu (a delay moves rows into or out of the "
-                "stick band, a coupling's twist leaves out a creeping knob); on the %zu both describe, held-out "
-                "RMS %.4g → %.4g mN·m.",
-                base, final, both, r.same_rows.base_Nm * 1e3, r.same_rows.final_Nm * 1e3);
+                "stick band, a coupling's %s leaves out a creeping knob); on the %zu both describe, held-out "
+                "RMS %.4g → %s.",
+                base, final, std::string(u.twist).c_str(), both, u.torque(r.same_rows.base_Nm),
+                u.torque.with(r.same_rows.final_Nm, "%.4g").c_str());
   return buf;
 }
 

@@ -219,6 +219,7 @@ FitResult fit_knob(const FitData& d, const FitOptions& opt) {
 
   FitResult r;
   r.model = opt.model;
+  r.axis = d.axis;
   r.names = param_names(opt.model);
   const std::size_t a = n - 3;  // A_pos, P_pos, S_pos are the last three
 

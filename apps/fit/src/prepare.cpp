@@ -92,6 +92,7 @@ std::vector<double> lowpass(const PrepOptions& o, double edge_hz, double fs,
 }  // namespace
 
 FitData prepare(const interchange::Capture& capture, const PrepOptions& opt) {
+  const Axis axis = resolve_axis(capture, opt.axis);
   check_capture(capture);
   const double fs = sample_rate(capture.t);
   const bool resampled = irregular(capture.t, fs);
@@ -111,6 +112,7 @@ FitData prepare(const interchange::Capture& capture, const PrepOptions& opt) {
   d.rate_hz = fs;
   d.resampled = resampled;
   d.alpha_from_encoder = encoder;
+  d.axis = axis;
   for (std::size_t i = 0; i < c.size(); ++i) {
     if (!c.flags.empty() && (c.flags[i] & opt.exclude_flags)) continue;
     d.t.push_back(c.t[i]);

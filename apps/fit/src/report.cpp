@@ -36,9 +36,6 @@ using plot::Panel;
 using plot::Series;
 namespace palette = plot::palette;
 
-// SI to the figures' units, at the edge only.
-constexpr double kmNm = 1e3;
-constexpr double kDeg = 180.0 / std::numbers::pi;
 
 // Marker sizes and line widths, mm.
 constexpr double kCloudDot = 0.4, kFitDot = 0.18, kFitLine = 0.35, kBandLine = 0.25;
@@ -50,7 +47,19 @@ struct Inputs {
   const ReportOptions& opt;
   std::size_t n;
   bool has_obs;
-  std::vector<double> theta_deg, omega_deg;
+  std::vector<double> theta_shown, omega_shown;  // in the axes' units: deg, deg/s (mm, mm/s)
+  const AxisUnits& u;  // SI to the figures' units, at the edge only
+
+  double torque(double si) const { return u.torque(si); }
+  std::string tau() const { return std::string(u.tau); }
+  std::string effort() const { return std::string(u.effort); }
+  // "τ (mN·m)", "F (N)"
+  std::string torque_label(const std::string& what) const {
+    return what + " (" + std::string(u.torque.axis_label()) + ")";
+  }
+  std::string torque_column(const std::string& what) const {
+    return what + "_" + std::string(u.torque.column_suffix());
+  }
 };
 
 std::vector<double> scaled(const std::vector<double>& v, double k) {
@@ -91,15 +100,15 @@ Series points(Series s, const std::vector<double>& x, const std::vector<std::siz
 Panel total_panel(const Inputs& in, const std::vector<double>& x, const std::string& xlabel) {
   Panel panel;
   panel.name = "total";
-  panel.heading = "All torques: raw τ and fitted τ";
+  panel.heading = "All " + in.effort() + "s: raw " + in.tau() + " and fitted " + in.tau();
   panel.xlabel = xlabel;
-  panel.ylabel = "τ (mN·m)";
+  panel.ylabel = in.torque_label(in.tau());
   const auto cloud = plot::thin(in.n, in.opt.max_points);
   const auto fitted = plot::thin(in.n, std::max<std::size_t>(1, in.opt.max_points / 4));
-  panel.series.push_back(points(series("raw_torque", "raw τ", Mark::Dots, palette::kRaw, kCloudDot, 0), x, cloud,
-                                [&](std::size_t i) { return kmNm * in.d.torque[i]; }));
-  panel.series.push_back(points(series("fitted_torque", "fitted τ", Mark::Dots, palette::kBlack, kFitDot, 1), x,
-                                fitted, [&](std::size_t i) { return kmNm * in.p.tau[i]; }));
+  panel.series.push_back(points(series("raw_torque", "raw " + in.tau(), Mark::Dots, palette::kRaw, kCloudDot, 0), x,
+                                cloud, [&](std::size_t i) { return in.torque(in.d.torque[i]); }));
+  panel.series.push_back(points(series("fitted_torque", "fitted " + in.tau(), Mark::Dots, palette::kBlack, kFitDot, 1),
+                                x, fitted, [&](std::size_t i) { return in.torque(in.p.tau[i]); }));
   return panel;
 }
 
@@ -110,11 +119,11 @@ Panel part_panel(const Inputs& in, const std::vector<double>& x, const std::vect
                  const std::string& part, const std::string& name) {
   Panel panel;
   panel.name = name + "_part";
-  panel.ylabel = part + " (mN·m)";
+  panel.ylabel = in.torque_label(part);
   const auto cloud = plot::thin(in.n, in.opt.max_points);
   panel.series.push_back(points(series("raw_" + name, "raw " + part, Mark::Dots, palette::kRaw, kCloudDot, 0), x,
                                 cloud, [&](std::size_t i) {
-                                  return kmNm * (in.d.torque[i] - others_a[i] - others_b[i]);
+                                  return in.torque(in.d.torque[i] - others_a[i] - others_b[i]);
                                 }));
   // Fitted part: a line through the samples sorted by x. Bands: fewer
   // vertices, as a dashed line is dashed piece by piece.
@@ -123,7 +132,7 @@ Panel part_panel(const Inputs& in, const std::vector<double>& x, const std::vect
     for (const std::size_t k : plot::thin(in.n, vertices)) {
       const std::size_t i = order[k];
       s.x.push_back(x[i]);
-      s.y.push_back(kmNm * (fit[i] + (halfs.empty() ? 0.0 : sign * halfs[k])));
+      s.y.push_back(in.torque(fit[i] + (halfs.empty() ? 0.0 : sign * halfs[k])));
     }
     panel.series.push_back(std::move(s));
   };
@@ -172,12 +181,11 @@ void fit_residual_range(Panel& panel, const Inputs& in, const std::vector<double
     if (std::isfinite(h)) limit = std::max(limit, 1.3 * h);
   }
   if (!(limit > 0.0) || !std::isfinite(limit)) return;
-  panel.y_lo = -kmNm * limit;
-  panel.y_hi = kmNm * limit;
+  panel.y_lo = -in.torque(limit);
+  panel.y_hi = in.torque(limit);
   std::size_t beyond = 0;
   for (const double v : r) beyond += std::abs(v) > limit ? 1 : 0;
-  if (beyond > 0)
-    panel.heading += " (" + std::to_string(beyond) + " beyond ±" + fmt("%.3g", kmNm * limit) + " mN·m)";
+  if (beyond > 0) panel.heading += " (" + std::to_string(beyond) + " beyond ±" + in.u.torque.with(limit) + ")";
 }
 
 Series zero_line(double x0, double x1) {
@@ -187,16 +195,18 @@ Series zero_line(double x0, double x1) {
   return s;
 }
 
-constexpr const char* kResidualHeading = "Residual raw τ − fitted τ, 95% bands shaded";
+std::string residual_heading(const Inputs& in) {
+  return "Residual raw " + in.tau() + " − fitted " + in.tau() + ", 95% bands shaded";
+}
 
 // Residual against θ or θ̇ with the shaded bands about zero (bands averaged
 // along the axis, as in the part panels).
 Panel residual_panel(const Inputs& in, const std::vector<double>& x, const std::string& xlabel) {
   Panel panel;
   panel.name = "residual";
-  panel.heading = kResidualHeading;
+  panel.heading = residual_heading(in);
   panel.xlabel = xlabel;
-  panel.ylabel = "residual (mN·m)";
+  panel.ylabel = in.torque_label("residual");
   const std::vector<double> r = residuals(in);
   const auto order = plot::sorted_by(x);
   const auto vertices = plot::thin(in.n, std::min<std::size_t>(in.opt.max_points, 600));
@@ -205,8 +215,8 @@ Panel residual_panel(const Inputs& in, const std::vector<double>& x, const std::
     const auto smooth = plot::smoothed_along(half, order);
     for (const std::size_t k : vertices) {
       s.x.push_back(x[order[k]]);
-      s.y.push_back(kmNm * smooth[k]);
-      s.y_low.push_back(-kmNm * smooth[k]);
+      s.y.push_back(in.torque(smooth[k]));
+      s.y_low.push_back(-in.torque(smooth[k]));
     }
     return s;
   };
@@ -215,7 +225,7 @@ Panel residual_panel(const Inputs& in, const std::vector<double>& x, const std::
     panel.series.push_back(fill("observation_band", "95% observation band", palette::kBandLight, 3, in.p.observation_half));
   panel.series.push_back(fill("band", "95% band of the fit", palette::kBandDark, 2, in.p.curve_half));
   panel.series.push_back(points(series("residual", "residual", Mark::Dots, palette::kRaw, kCloudDot, 0), x,
-                                plot::thin(in.n, in.opt.max_points), [&](std::size_t i) { return kmNm * r[i]; }));
+                                plot::thin(in.n, in.opt.max_points), [&](std::size_t i) { return in.torque(r[i]); }));
   panel.series.push_back(zero_line(x[order.front()], x[order.back()]));
   fit_residual_range(panel, in, r);
   return panel;
@@ -227,7 +237,7 @@ std::string with_title(const ReportOptions& opt, const std::string& what) {
 
 std::string summary(const FitResult& r, std::size_t n) {
   std::string s = std::string(model_name(r.model)) + " fit, " + std::to_string(n) + " samples";
-  if (r.rmse_Nm > 0.0) s += ", RMSE " + fmt("%.3g", r.rmse_Nm * kmNm) + " mN·m";
+  if (r.rmse_Nm > 0.0) s += ", RMSE " + units(r.axis).torque.with(r.rmse_Nm);
   if (r.fit_percent != 0.0) s += ", fit " + fmt("%.1f", r.fit_percent) + " %";
   s += r.detents ? ", detents" : ", no detents";
   return s;
@@ -238,38 +248,40 @@ plot::Figure page(const Inputs& in, const std::string& what, std::string x_colum
   f.title = with_title(in.opt, what);
   f.subtitle = summary(in.r, in.n);
   f.x_column = std::move(x_column);
-  f.y_column = "torque_mNm";
-  f.y_low_column = "torque_lower_mNm";
+  f.y_column = in.torque_column(in.effort());
+  f.y_low_column = in.torque_column(in.effort() + "_lower");
   return f;
 }
 
 plot::Figure position_figure(const Inputs& in) {
-  plot::Figure f = page(in, "torque against position", "position_deg");
-  const std::string xl = "position θ (deg)";
-  const auto& x = in.theta_deg;
+  const std::string t = in.tau();
+  plot::Figure f = page(in, in.effort() + " against position", "position_" + std::string(in.u.position.column_suffix()));
+  const std::string xl = "position " + std::string(in.u.theta) + " (" + std::string(in.u.position.axis_label()) + ")";
+  const auto& x = in.theta_shown;
   f.panels.push_back(total_panel(in, x, xl));
-  Panel part = part_panel(in, x, in.p.pos, in.p.acc, in.p.vel, "τ#dpos#u", "position");
+  Panel part = part_panel(in, x, in.p.pos, in.p.acc, in.p.vel, t + "#dpos#u", "position");
   part.xlabel = xl;
-  part.heading = in.r.detents ? "Position part: τ#dpos#u = τ − τ#dacc#u − τ#dvel#u"
-                              : "Position part: τ#dpos#u = τ − τ#dacc#u − τ#dvel#u (no detents fitted: "
-                                "fitted τ#dpos#u = 0)";
+  part.heading = "Position part: " + t + "#dpos#u = " + t + " − " + t + "#dacc#u − " + t + "#dvel#u" +
+                 (in.r.detents ? "" : " (no detents fitted: fitted " + t + "#dpos#u = 0)");
   f.panels.push_back(std::move(part));
   f.panels.push_back(residual_panel(in, x, xl));
   return f;
 }
 
 plot::Figure velocity_figure(const Inputs& in) {
-  plot::Figure f = page(in, "torque against velocity", "velocity_deg_per_s");
-  const std::string xl = "velocity θ\u0307 (deg/s)";
-  const auto& x = in.omega_deg;
+  const std::string t = in.tau();
+  plot::Figure f = page(in, in.effort() + " against velocity", "velocity_" + std::string(in.u.plot_speed.column_suffix()));
+  const std::string xl =
+      "velocity " + std::string(in.u.theta_dot) + " (" + std::string(in.u.plot_speed.axis_label()) + ")";
+  const auto& x = in.omega_shown;
   f.panels.push_back(total_panel(in, x, xl));
-  Panel part = part_panel(in, x, in.p.vel, in.p.acc, in.p.pos, "τ#dvel#u", "velocity");
+  Panel part = part_panel(in, x, in.p.vel, in.p.acc, in.p.pos, t + "#dvel#u", "velocity");
   part.xlabel = xl;
-  part.heading = "Velocity part: τ#dvel#u = τ − τ#dacc#u − τ#dpos#u";
+  part.heading = "Velocity part: " + t + "#dvel#u = " + t + " − " + t + "#dacc#u − " + t + "#dpos#u";
   if (in.r.stick && in.r.stick->dv > 0.0) {
     for (Panel* pn : {&f.panels.front(), &part}) {
       Series limits = series("stick_band_limit", "stick band ±Δv", Mark::VLines, palette::kOrange, 0.3, 4);
-      limits.x = {-kDeg * in.r.stick->dv, kDeg * in.r.stick->dv};
+      limits.x = {-in.u.plot_speed(in.r.stick->dv), in.u.plot_speed(in.r.stick->dv)};
       pn->series.push_back(std::move(limits));
     }
   }
@@ -279,7 +291,7 @@ plot::Figure velocity_figure(const Inputs& in) {
 }
 
 plot::Figure time_figure(const Inputs& in) {
-  plot::Figure f = page(in, "torque against time", "time_s");
+  plot::Figure f = page(in, in.effort() + " against time", "time_s");
   const auto& d = in.d;
   const auto& p = in.p;
   const auto cloud = plot::thin(in.n, in.opt.max_points);
@@ -288,24 +300,24 @@ plot::Figure time_figure(const Inputs& in) {
 
   Panel top;
   top.name = "total";
-  top.heading = "Raw and fitted torque";
+  top.heading = "Raw and fitted " + in.effort();
   top.xlabel = "time (s)";
-  top.ylabel = "τ (mN·m)";
-  top.series.push_back(points(series("raw_torque", "raw τ", Mark::Dots, palette::kRaw, kCloudDot, 0), d.t, cloud,
-                              [&](std::size_t i) { return kmNm * d.torque[i]; }));
-  Series fitted = series("fitted_torque", "fitted τ", Mark::Line, palette::kBlack, 0.2, 1);
-  plot::minmax_series(fitted, d.t, line_buckets, [&](std::size_t i) { return kmNm * p.tau[i]; });
+  top.ylabel = in.torque_label(in.tau());
+  top.series.push_back(points(series("raw_torque", "raw " + in.tau(), Mark::Dots, palette::kRaw, kCloudDot, 0), d.t,
+                              cloud, [&](std::size_t i) { return in.torque(d.torque[i]); }));
+  Series fitted = series("fitted_torque", "fitted " + in.tau(), Mark::Line, palette::kBlack, 0.2, 1);
+  plot::minmax_series(fitted, d.t, line_buckets, [&](std::size_t i) { return in.torque(p.tau[i]); });
   top.series.push_back(std::move(fitted));
 
   Panel bottom;
   bottom.name = "residual";
-  bottom.heading = kResidualHeading;
+  bottom.heading = residual_heading(in);
   bottom.xlabel = "time (s)";
-  bottom.ylabel = "residual (mN·m)";
+  bottom.ylabel = in.torque_label("residual");
   // Shaded ±h(t), h's largest value over each bucket.
   auto band = [&](std::string name, std::string label, plot::Rgb color, int rank, const std::vector<double>& half) {
     Series s = series(std::move(name), std::move(label), Mark::Fill, color, 0.0, rank);
-    plot::envelope_series(s, d.t, band_buckets, [&](std::size_t i) { return kmNm * half[i]; });
+    plot::envelope_series(s, d.t, band_buckets, [&](std::size_t i) { return in.torque(half[i]); });
     for (const double y : s.y) s.y_low.push_back(-y);
     bottom.series.push_back(std::move(s));
   };
@@ -313,7 +325,7 @@ plot::Figure time_figure(const Inputs& in) {
   if (in.has_obs) band("observation_band", "95% observation band", palette::kBandLight, 3, p.observation_half);
   band("band", "95% band of the fit", palette::kBandDark, 2, p.curve_half);
   bottom.series.push_back(points(series("residual", "residual", Mark::Dots, palette::kRaw, kCloudDot, 0), d.t, cloud,
-                                 [&](std::size_t i) { return kmNm * r[i]; }));
+                                 [&](std::size_t i) { return in.torque(r[i]); }));
   bottom.series.push_back(zero_line(d.t.front(), d.t.back()));
   fit_residual_range(bottom, in, r);
 
@@ -323,18 +335,19 @@ plot::Figure time_figure(const Inputs& in) {
 }
 
 plot::Figure ci_figure(const Inputs& in) {
-  plot::Figure f = page(in, "95% confidence band of the fitted torque", "fitted_torque_mNm");
-  f.y_column = "half_width_mNm";
+  plot::Figure f = page(in, "95% confidence band of the fitted " + in.effort(),
+                        in.torque_column("fitted_" + in.effort()));
+  f.y_column = in.torque_column("half_width");
   Panel panel;
   panel.name = "band";
-  panel.heading = "Half-width of the fitted curve's 95% band against fitted torque";
-  panel.xlabel = "fitted τ (mN·m)";
-  panel.ylabel = "95% band half-width (mN·m)";
+  panel.heading = "Half-width of the fitted curve's 95% band against fitted " + in.effort();
+  panel.xlabel = in.torque_label("fitted " + in.tau());
+  panel.ylabel = in.torque_label("95% band half-width");
   panel.y_from_zero = true;
   Series pts = series("per_sample", "per sample", Mark::Dots, palette::kBlack, 0.3, 0);
   for (const std::size_t i : plot::thin(in.n, in.opt.max_points)) {
-    pts.x.push_back(kmNm * in.p.tau[i]);
-    pts.y.push_back(kmNm * in.p.curve_half[i]);
+    pts.x.push_back(in.torque(in.p.tau[i]));
+    pts.y.push_back(in.torque(in.p.curve_half[i]));
   }
   double sum = 0.0, lo = std::numeric_limits<double>::infinity(), hi = -lo;
   std::size_t finite = 0;
@@ -347,8 +360,9 @@ plot::Figure ci_figure(const Inputs& in) {
     if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
   panel.series.push_back(std::move(pts));
   if (finite > 0 && lo <= hi) {
-    const double mean = kmNm * sum / static_cast<double>(finite);
-    Series avg = series("mean", "mean " + fmt("%.3g", mean) + " mN·m", Mark::Dashed, palette::kRed, 0.3, 1);
+    const double mean = in.torque(sum / static_cast<double>(finite));
+    Series avg = series("mean", "mean " + fmt("%.3g", mean) + " " + std::string(in.u.torque.text), Mark::Dashed,
+                        palette::kRed, 0.3, 1);
     avg.x = {lo, hi};
     avg.y = {mean, mean};
     panel.series.push_back(std::move(avg));
@@ -383,8 +397,16 @@ void check_inputs(const FitData& data, const Prediction& p, const ReportOptions&
 std::vector<plot::NamedFigure> report_figures(const FitResult& r, const FitData& data, const Prediction& p,
                                               const ReportOptions& opt) {
   check_inputs(data, p, opt);
-  const Inputs in{r,   data, p, opt, data.size(), !p.observation_half.empty(), scaled(data.theta, kDeg),
-                  scaled(data.omega, kDeg)};
+  const AxisUnits& u = units(r.axis);
+  const Inputs in{r,
+                  data,
+                  p,
+                  opt,
+                  data.size(),
+                  !p.observation_half.empty(),
+                  scaled(data.theta, u.position.scale),
+                  scaled(data.omega, u.plot_speed.scale),
+                  u};
   return {{"torque_position", position_figure(in)},
           {"torque_velocity", velocity_figure(in)},
           {"torque_time", time_figure(in)},

@@ -9,6 +9,8 @@ namespace knoblab::fit {
 std::string to_json(const FitResult& r, int indent) {
   nlohmann::ordered_json j;
   j["model"] = model_name(r.model);
+  // Still SI; a linear axis's readers take rad as m and N·m as N.
+  if (r.axis == Axis::Linear) j["axis"] = axis_name(r.axis);
   nlohmann::ordered_json params, ci, se, held = nlohmann::json::array();
   for (std::size_t k = 0; k < r.names.size(); ++k) {
     const std::string name(r.names[k]);

@@ -155,6 +155,9 @@ struct ResidualTrace {
 };
 
 struct DiscrepancyResult {
+  // The recording's (FitData::axis): the sentences' and the report's units;
+  // the figures stay SI, in the channel's own units (m and N when linear).
+  fit::Axis axis = fit::Axis::Rotary;
   ModelSummary base, final_model;
   FinalKnob final_knob;  // final_model's terms
   std::vector<Finding> findings;  // empty: nothing is missing
@@ -184,6 +187,11 @@ struct DiscrepancyResult {
 
 // The effects discover() can fit today.
 std::vector<EffectId> implemented_effects();
+// … those that apply to an axis, discover()'s candidates when
+// DiscrepancyOptions::effects is empty: a linear axis has no gravity (a sine
+// of the position in metres; its carriage's weight is a constant force,
+// which `offset` is).
+std::vector<EffectId> implemented_effects(fit::Axis axis);
 
 // Throws fit::FitDataError when the data cannot identify the base model,
 // fit::Cancelled when opt.hooks says so.
@@ -196,7 +204,8 @@ DiscrepancyResult discover(const fit::FitData& data, const DiscrepancyOptions& o
 DiscrepancyResult discover(const fit::FitData& data, const fit::FitData& heldout,
                            const DiscrepancyOptions& opt = {});
 
-// {"base": …, "findings": […], "final": …} with the names docs/discrepancy.md fixes.
+// {"base": …, "findings": […], "final": …} with the names docs/discrepancy.md fixes;
+// "axis": "linear" first for a linear axis (SI: read rad as m, N·m as N).
 std::string to_json(const DiscrepancyResult& r, int indent = 2);
 
 // The final model as a model file (docs/discrepancy.md, "Model file"):

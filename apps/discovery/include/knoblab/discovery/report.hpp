@@ -14,7 +14,8 @@
 //                      RMS, fit %, BIC, whiteness p, independence p; one
 //                      sentence per finding (its CSV: the table)
 //   summary.md         the same table and sentences as text
-// Axes in presentation units: mN·m, degrees, deg/s, s.
+// Axes in presentation units: mN·m, degrees, deg/s, s; on a linear axis
+// (DiscrepancyResult::axis) N, mm, mm/s, s (fit/axis_units.hpp).
 #pragma once
 
 #include <filesystem>

@@ -18,15 +18,19 @@
 //    the simulated high-friction knob).
 //  * Samples the loop flagged (e-stop, fault latched, torque clipped) are
 //    filtered with the rest, then left out of the fit.
+//  * The axis (axis_units.hpp) is the capture's metadata's (capture_axis),
+//    or PrepOptions::axis: a linear actuator's channels are m, m/s, N.
 // The thesis also sorts by position before filtering; filtering in time
 // keeps the filter meaningful, and the fit needs no order.
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <vector>
 
+#include "knoblab/fit/axis_units.hpp"
 #include "knoblab/interchange/capture.hpp"
 #include "knoblab/interchange/sample.hpp"
 #include "knoblab/model/terms.hpp"
@@ -51,6 +55,9 @@ struct FitData {
   double rate_hz = 0.0;       // sample rate the preparation assumed
   bool resampled = false;     // irregular time stamps, interpolated onto 1/rate_hz
   bool alpha_from_encoder = false;  // α is the encoder's second derivative, not an accelerometer's
+  // Linear: θ is a position in m, ω m/s, α m/s², the torque a force in N.
+  // Nothing inside changes; the presentation does (axis_units.hpp).
+  Axis axis = Axis::Rotary;
 
   std::size_t size() const { return t.size(); }
   model::Kinematics<double> kinematics(std::size_t i) const {
@@ -73,10 +80,24 @@ struct PrepOptions {
   // Flags that exclude a sample from the fit.
   std::uint32_t exclude_flags = interchange::kEstopActive | interchange::kFaultLatched |
                                 interchange::kTorqueLimited;
+  // The axis when the capture's metadata does not say (knoblab fit
+  // --linear); one that says otherwise is an error.
+  std::optional<Axis> axis;
 };
 
+// The axis a capture's metadata names: its `axis` entry (a CSV's `# axis:`
+// line) or, for a capture read from the store, the `axis` member of its
+// `metadata` object; nothing when neither says. Throws FitDataError naming
+// the value when it is neither "rotary" nor "linear".
+std::optional<Axis> capture_axis(const interchange::Capture& capture);
+
+// The capture's axis, or `given` when it says none; rotary when neither
+// does. Throws FitDataError when the two disagree.
+Axis resolve_axis(const interchange::Capture& capture, std::optional<Axis> given);
+
 // A capture whose α column was derived (absent from its CSV) uses the
-// encoder whatever `opt.alpha` says. Throws FitDataError for fewer than 100
+// encoder whatever `opt.alpha` says. Throws FitDataError for an axis as
+// resolve_axis does, for fewer than 100
 // samples, non-increasing or non-finite times or values, or a knob that did
 // not move.
 FitData prepare(const interchange::Capture& capture, const PrepOptions& opt = {});

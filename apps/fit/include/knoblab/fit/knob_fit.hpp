@@ -94,6 +94,7 @@ struct FitPhases {
 
 struct FitResult {
   ModelKind model = ModelKind::Thesis6;
+  Axis axis = Axis::Rotary;               // the data's, for presentation (axis_units.hpp)
   std::vector<std::string_view> names;
   std::vector<double> params;             // SI, fit order
   std::vector<bool> fitted;               // false: held (no detents)

@@ -15,7 +15,8 @@
 // panels they sit inside the fitted line; the residual panels (y range six
 // robust SDs or the bands' width, transients counted in the heading) are
 // where they are seen.
-// Axes in presentation units: mN·m, degrees, deg/s, s.
+// Axes in presentation units: mN·m, degrees, deg/s, s; for a linear axis
+// (FitResult::axis) N, mm, mm/s, s, and F for τ (axis_units.hpp).
 #pragma once
 
 #include <filesystem>

@@ -1,5 +1,5 @@
 // A fit as JSON: the format outside tools read (docs/fit.md). SI units.
-//   {"model": "thesis6",
+//   {"model": "thesis6", ["axis": "linear",]     (only for a linear axis: m, N)
 //    "params": {"M_acc": …, "C_vel_neg": …, …, "S_pos": …},
 //    "ci95":   {"M_acc": [lo, hi], …},          (null for a held parameter)
 //    "se": {…}, "held": ["A_pos", …],
