@@ -1,4 +1,4 @@
-// Issue 4, acceptance 2: the five thesis knobs (Table 5), captured in
+// The five thesis knobs (Table 5), captured in
 // simulation as `knoblab demo` captures them (Table 3 sweep through the PID,
 // 5 s at 5 kHz) and fitted with no starting values, over several noise seeds.
 //  * detents per revolution within 3 % of the gold standard (Tables 8/14) for
