@@ -1,5 +1,6 @@
 #include "extended_model.hpp"
 
+#include "coupled_knob.hpp"
 #include "knoblab/model/filters.hpp"
 
 #include <ceres/ceres.h>
@@ -7,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 namespace knoblab::discovery::detail {
@@ -30,8 +32,17 @@ std::vector<double> ExtendedModel::flat() const {
   return p;
 }
 
+bool ExtendedModel::simulates_coupling() const {
+  for (const ActiveEffect& e : effects)
+    if (e.id == EffectId::Compliance && e.simulated) return true;
+  return false;
+}
+
 std::vector<bool> ExtendedModel::free_mask() const {
-  std::vector<bool> free = base_fitted;
+  // Behind a simulated coupling the knob's own terms stay as the base fit
+  // has them: the fit sees only the rows where the knob slides, and terms
+  // bent to those would mislead the simulation everywhere else.
+  std::vector<bool> free = simulates_coupling() && !refit_behind_coupling ? std::vector<bool>{} : base_fitted;
   free.resize(base.size(), false);
   for (const ActiveEffect& e : effects)
     for (std::size_t k = 0; k < e.params.size(); ++k) free.push_back(e.fitted(k));
@@ -58,6 +69,69 @@ Layout layout_of(const ExtendedModel& m) {
   return L;
 }
 
+namespace {
+
+double offset_of(const ExtendedModel& m) {
+  const ActiveEffect* o = m.find(EffectId::Offset);
+  return o && !o->params.empty() ? o->params[0] : 0.0;
+}
+
+// The knob simulated behind the coupling (coupled_knob.hpp) when the model
+// has a compliance in its simulated form; nothing otherwise. The knob's
+// torques are the model's as it stands.
+std::optional<CoupledMotion> coupled_motion(const fit::FitData& d, const ExtendedModel& m) {
+  const ActiveEffect* compliance = m.find(EffectId::Compliance);
+  if (!compliance || !compliance->simulated) return std::nullopt;
+  const double J = std::abs(m.base[model::kM_acc]);
+  if (!(J > 0.0) || !(compliance->setting > 0.0)) return std::nullopt;
+  const Layout L = layout_of(m);
+  const std::vector<double> p = m.flat();
+  const auto base = model::ThesisModel<double>::from_params(p.data());
+  const double offset = offset_of(m);
+  KnobDynamics knob;
+  knob.inertia = J;
+  const double kinetic = std::max(std::abs(m.base[model::kC_vel_pos]), std::abs(m.base[model::kC_vel_neg]));
+  knob.breakaway = std::max(m.breakaway, kinetic);
+  knob.torque = [&](double theta, double omega) {
+    RowInputs r;
+    r.theta = theta;
+    r.omega = omega;
+    return extended_torque(L, p.data(), base, r) - offset;
+  };
+  return simulate_coupled_knob(d.t, d.theta, d.omega, {compliance->setting, compliance->lag_s}, knob);
+}
+
+// The simulated coupling torque as the recording's went through the
+// preparation's low-pass (FitData::torque_lowpass), and which rows are
+// within the filter's settling of the knob sticking or breaking away: there
+// the simulated ring is compared through the filter, not the knob's law.
+struct FilteredCoupling {
+  std::vector<double> torque;
+  std::vector<char> settled;
+};
+
+FilteredCoupling filtered(const fit::FitData& d, const CoupledMotion& c) {
+  const std::size_t n = d.size();
+  const fit::FitData::Lowpass& lp = d.torque_lowpass;
+  FilteredCoupling out;
+  out.torque = lp.order > 0 ? model::sosfiltfilt(model::design_cheby2_lowpass(lp.order, lp.stop_atten_db,
+                                                                             lp.edge_hz, d.rate_hz),
+                                                 c.torque)
+                            : c.torque;
+  const auto reach = static_cast<std::ptrdiff_t>(lp.order > 0 ? std::ceil(2.0 * d.rate_hz / lp.edge_hz) : 1.0);
+  const auto last = static_cast<std::ptrdiff_t>(n) - 1;
+  out.settled.assign(n, 1);
+  for (std::size_t i = 1; i < n; ++i) {
+    if (c.stuck[i] == c.stuck[i - 1]) continue;
+    const auto at = static_cast<std::ptrdiff_t>(i);
+    for (std::ptrdiff_t j = std::max<std::ptrdiff_t>(0, at - reach); j <= std::min(last, at + reach); ++j)
+      out.settled[static_cast<std::size_t>(j)] = 0;
+  }
+  return out;
+}
+
+}  // namespace
+
 // A fraction of the stick speed (2 % of the brisk speed): the encoder's
 // motion can be that slow at a reversal with the knob still sliding, but a
 // knob whose twist-corrected speed stays under it stands.
@@ -78,7 +152,9 @@ std::vector<RowInputs> row_inputs(const fit::FitData& d, std::span<const std::si
   // derivative; an accelerometer already rides on the knob side.
   const ActiveEffect* compliance = m.find(EffectId::Compliance);
   std::vector<double> twist, twist_rate, twist_acc, wound;
-  if (compliance) {
+  const std::optional<CoupledMotion> coupled = coupled_motion(d, m);
+  const FilteredCoupling coupled_reading = coupled ? filtered(d, *coupled) : FilteredCoupling{};
+  if (compliance && !coupled) {
     const double k = compliance->setting, lag = compliance->lag_s;
     twist.resize(n);
     double e = d.torque[0] / k;
@@ -172,6 +248,19 @@ std::vector<RowInputs> row_inputs(const fit::FitData& d, std::span<const std::si
     r.theta = at(d.theta, i);
     r.omega = at(d.omega, i);
     r.alpha = at(d.alpha, i);
+    if (coupled) {
+      // The simulated knob's motion (α the accelerometer's when it rides on
+      // the knob); where it stands or has just stuck or broken away, the
+      // coupling's torque through the filter is the prediction.
+      r.theta = coupled->theta[i];
+      r.omega = coupled->omega[i];
+      if (d.alpha_from_encoder) r.alpha = coupled->alpha[i];
+      const bool sliding = !coupled->stuck[i] && coupled_reading.settled[i];
+      if (!sliding) r.wound = coupled_reading.torque[i] + offset_of(m);
+      r.described = sliding && std::abs(r.omega) >= m.stick_speed;
+      out.push_back(r);
+      continue;
+    }
     if (compliance) {
       r.theta -= twist[i];
       r.omega -= twist_rate[i];

@@ -31,6 +31,10 @@ struct ActiveEffect {
   // compliance only: the coupling's damping over its stiffness, c/k (s) —
   // the twist follows τ/k through a first-order lag of this time constant.
   double lag_s = 0.0;
+  // compliance only: the knob behind the coupling simulated from the
+  // motor's motion (coupled_knob.hpp) rather than read off the measured
+  // torque.
+  bool simulated = false;
   // Part of a given model held fixed (discrepancy --model): not fitted.
   bool held = false;
   // Bit k: params[k] held at its value, a nested, simpler form of the
@@ -72,6 +76,10 @@ struct ExtendedModel {
   bool has(EffectId id) const;
   // Eq. 6's detent term is in the model: fitted, or held at a given amplitude.
   bool has_detents() const;
+  // A compliance in its simulated form: the base's terms are then held
+  // (unless refit_behind_coupling), the fit seeing only the sliding rows.
+  bool simulates_coupling() const;
+  bool refit_behind_coupling = false;
   const ActiveEffect* find(EffectId id) const;
   std::vector<double> flat() const;   // base then every effect's params
   std::vector<bool> free_mask() const;  // per flat() entry: fitted (not held or fixed)

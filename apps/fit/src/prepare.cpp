@@ -81,12 +81,15 @@ interchange::Capture resample(const interchange::Capture& c, double fs) {
 
 // Table 6's filter on one channel; unfiltered when the edge is too close to
 // Nyquist for the filter to mean anything.
+bool filters(const PrepOptions& o, double edge_hz, double fs, std::size_t n) {
+  if (!o.filter || edge_hz >= 0.45 * fs) return false;
+  return n > model::sosfiltfilt_padlen(model::design_cheby2_lowpass(o.order, o.stop_atten_db, edge_hz, fs));
+}
+
 std::vector<double> lowpass(const PrepOptions& o, double edge_hz, double fs,
                             std::vector<double> x) {
-  if (!o.filter || edge_hz >= 0.45 * fs) return x;
-  const model::SosCascade f = model::design_cheby2_lowpass(o.order, o.stop_atten_db, edge_hz, fs);
-  if (x.size() <= model::sosfiltfilt_padlen(f)) return x;
-  return model::sosfiltfilt(f, x);
+  if (!filters(o, edge_hz, fs, x.size())) return x;
+  return model::sosfiltfilt(model::design_cheby2_lowpass(o.order, o.stop_atten_db, edge_hz, fs), x);
 }
 
 }  // namespace
@@ -113,6 +116,8 @@ FitData prepare(const interchange::Capture& capture, const PrepOptions& opt) {
   d.resampled = resampled;
   d.alpha_from_encoder = encoder;
   d.axis = axis;
+  if (filters(opt, opt.edge_torque_hz, fs, c.size()))
+    d.torque_lowpass = {opt.order, opt.stop_atten_db, opt.edge_torque_hz};
   for (std::size_t i = 0; i < c.size(); ++i) {
     if (!c.flags.empty() && (c.flags[i] & opt.exclude_flags)) continue;
     d.t.push_back(c.t[i]);

@@ -58,6 +58,13 @@ struct FitData {
   // Linear: θ is a position in m, ω m/s, α m/s², the torque a force in N.
   // Nothing inside changes; the presentation does (axis_units.hpp).
   Axis axis = Axis::Rotary;
+  // The low-pass the torque went through (Table 6; order 0: none): a model
+  // that predicts the torque by simulation is filtered the same way before
+  // it is compared, or a sharp transient's ring would count as its error.
+  struct Lowpass {
+    int order = 0;
+    double stop_atten_db = 0.0, edge_hz = 0.0;
+  } torque_lowpass;
 
   std::size_t size() const { return t.size(); }
   model::Kinematics<double> kinematics(std::size_t i) const {
