@@ -60,7 +60,9 @@ TEST(SoftCoupling, TheSimulatedKnobReadsThePlantsCouplingTorqueWithTheKnobsOwnTe
   c.camera.encoder_counts_per_rev = 0;
   c.camera.torque_noise_rms = 0.0;
   const bench::TwoBodyRun run = bench::run_two_body(c);
-  const fit::FitData d = fit::prepare(run.capture, {.filter = false});
+  fit::PrepOptions raw;
+  raw.filter = false;
+  const fit::FitData d = fit::prepare(run.capture, raw);
   std::vector<double> omega(d.size());
   for (std::size_t i = 0; i < d.size(); ++i) omega[i] = run.truth.knob_omega[i];
   KnobDynamics knob;
