@@ -124,15 +124,12 @@ std::optional<ExtendedModel> grid_search(EffectId id, const std::vector<double>&
   return best;
 }
 
-// A model's RMS residual over the rows it predicts: those it describes and,
-// under a coupling, those where the coupling's torque stands in (a knob that
-// stands).
-double predicted_rmse(const ExtendedModel& c, const fit::FitData& d, std::span<const std::size_t> train,
-                      const std::vector<double>* rows_of = nullptr) {
+// RMS of the residuals r over the rows where they and `alongside` are both
+// numbers (NaN: the model does not predict that row); +∞ with no such row.
+double rms_where(const std::vector<double>& r, const std::vector<double>& alongside) {
   double ss = 0.0, n = 0.0;
-  const std::vector<double> r = residuals(c, d, train);
   for (std::size_t j = 0; j < r.size(); ++j) {
-    if (std::isnan(r[j]) || (rows_of && std::isnan((*rows_of)[j]))) continue;
+    if (std::isnan(r[j]) || std::isnan(alongside[j])) continue;
     ss += r[j] * r[j];
     n += 1.0;
   }
@@ -145,59 +142,57 @@ std::optional<ExtendedModel> better_form(std::optional<ExtendedModel> a, std::op
                                          const fit::FitData& d, std::span<const std::size_t> train) {
   if (!a || !b) return a ? std::move(a) : std::move(b);
   const std::vector<double> ra = residuals(*a, d, train), rb = residuals(*b, d, train);
-  double sa = 0.0, sb = 0.0;
-  for (std::size_t j = 0; j < ra.size(); ++j) {
-    if (std::isnan(ra[j]) || std::isnan(rb[j])) continue;
-    sa += ra[j] * ra[j];
-    sb += rb[j] * rb[j];
-  }
-  return sb < sa ? std::move(b) : std::move(a);
+  return rms_where(rb, ra) < rms_where(ra, rb) ? std::move(b) : std::move(a);
 }
+
+// A compliance search's grid: ringing frequencies (Hz) at a starting damping
+// ratio, then damping ratios at the best, then stiffness factors at that.
+struct ComplianceGrid {
+  std::vector<double> ringing_hz;
+  double start_zeta;
+  std::vector<double> zetas, refine;
+};
 
 // Compliance has two settings: the coupling's stiffness k and its lag c/k.
 // k on a grid spanning the knob's ringing from 30 Hz to 1 kHz (k = M·ω²;
 // stiffer than that is rigid here) at a middling damping ratio ζ = 0.5
-// (c/k = 2ζ/ω; simulated: twice as fine at ζ 0.2); then ζ at the best k from
-// undamped to overdamped; then k refined at that ζ; then the best fitted
-// fully. Two forms: the knob's
+// (c/k = 2ζ/ω); then ζ at the best k from undamped to overdamped; then k
+// refined at that ζ; then the best fitted fully. Two forms: the knob's
 // motion read off the measured torque (the twist τ/k: stiff couplings), or
-// simulated behind the coupling (coupled_knob.hpp: soft ones); the better
-// on the rows both predict is kept.
+// simulated behind the coupling (coupled_knob.hpp: soft ones), whose sharp
+// ring takes a grid twice as fine, started at the light damping a gripper
+// has; the better on the rows both predict is kept.
 std::optional<ExtendedModel> compliance_form(const ExtendedModel& m, const fit::FitData& d,
                                              std::span<const std::size_t> train, bool simulated) {
   const double M = std::abs(m.base[model::kM_acc]);
   if (!(M > 0.0)) return std::nullopt;
-  std::optional<ExtendedModel> best;
-  double best_rmse = 0.0, best_k = 0.0, best_zeta = 0.5;
+  const ComplianceGrid grid =
+      simulated ? ComplianceGrid{{30.0, 42.0, 60.0, 85.0, 120.0, 170.0, 250.0, 350.0, 500.0, 700.0, 1000.0},
+                                 0.2,
+                                 {0.05, 0.1, 0.35, 0.7, 1.0},
+                                 {0.8, 0.9, 1.1, 1.25}}
+                : ComplianceGrid{{30.0, 60.0, 120.0, 250.0, 500.0, 1000.0}, 0.5, {0.0, 0.2, 1.0, 2.0},
+                                 {0.7, 0.85, 1.15, 1.3}};
   // The simulated form is judged on the rows the model it extends
-  // describes, as discovery will judge it.
-  const std::vector<double> described = residuals(m, d, train);
+  // describes, as discovery will judge it; the twist form on its own.
+  const std::vector<double> described = simulated ? residuals(m, d, train) : std::vector<double>{};
+  const auto judged = [&](const FitReport& r) { return simulated ? rms_where(r.residuals, described) : r.rmse; };
+  std::optional<ExtendedModel> best;
+  double best_rmse = 0.0, best_k = 0.0, best_zeta = grid.start_zeta;
   const auto try_setting = [&](double k, double zeta) {
     ActiveEffect e{EffectId::Compliance, {}, k};
     e.lag_s = 2.0 * zeta / std::sqrt(k / M);
     e.simulated = simulated;
     ExtendedModel c = with(m, std::move(e));
-    const FitReport r = fit_extended(c, d, train, 6);
-    const double rmse = simulated ? predicted_rmse(c, d, train, &described) : r.rmse;
+    const double rmse = judged(fit_extended(c, d, train, 6));
     if (!best || rmse < best_rmse) best = std::move(c), best_rmse = rmse, best_k = k, best_zeta = zeta;
   };
-  if (simulated) {
-    // A simulated ring is sharp in its frequency: the grid twice as fine,
-    // at the light damping a gripper has.
-    for (const double f : {30.0, 42.0, 60.0, 85.0, 120.0, 170.0, 250.0, 350.0, 500.0, 700.0, 1000.0})
-      try_setting(M * std::pow(2 * kPi * f, 2), 0.2);
-    const double k = best_k;
-    for (const double zeta : {0.05, 0.1, 0.35, 0.7, 1.0}) try_setting(k, zeta);
-    const double zeta = best_zeta;
-    for (const double f : {0.8, 0.9, 1.1, 1.25}) try_setting(k * f, zeta);
-  } else {
-    for (const double f : {30.0, 60.0, 120.0, 250.0, 500.0, 1000.0}) try_setting(M * std::pow(2 * kPi * f, 2), 0.5);
-    const double k = best_k;
-    for (const double zeta : {0.0, 0.2, 1.0, 2.0}) try_setting(k, zeta);
-    const double zeta = best_zeta;
-    for (const double f : {0.7, 0.85, 1.15, 1.3}) try_setting(k * f, zeta);
-  }
-  fit_extended(*best, d, train, 40);
+  for (const double f : grid.ringing_hz) try_setting(M * std::pow(2 * kPi * f, 2), grid.start_zeta);
+  const double k = best_k;
+  for (const double zeta : grid.zetas) try_setting(k, zeta);
+  const double zeta = best_zeta;
+  for (const double f : grid.refine) try_setting(k * f, zeta);
+  const FitReport fitted = fit_extended(*best, d, train, 40);
   // The base's terms, fitted as if the coupling were rigid, refitted on the
   // simulated knob's motion, twice; kept where the rows are better
   // predicted. Only with rows the law describes to fit them on: with none
@@ -210,10 +205,10 @@ std::optional<ExtendedModel> compliance_form(const ExtendedModel& m, const fit::
   if (simulated && sliding_rows(*best) >= 10 * static_cast<std::size_t>(kMaxParams)) {
     ExtendedModel refit = *best;
     refit.refit_behind_coupling = true;
-    for (int pass = 0; pass < 2; ++pass) fit_extended(refit, d, train, 20);
+    FitReport last;
+    for (int pass = 0; pass < 2; ++pass) last = fit_extended(refit, d, train, 20);
     refit.refit_behind_coupling = false;
-    if (predicted_rmse(refit, d, train, &described) < predicted_rmse(*best, d, train, &described))
-      best = std::move(refit);
+    if (judged(last) < judged(fitted)) best = std::move(refit);
   }
   return best;
 }

@@ -154,6 +154,7 @@ std::vector<RowInputs> row_inputs(const fit::FitData& d, std::span<const std::si
   std::vector<double> twist, twist_rate, twist_acc, wound;
   const std::optional<CoupledMotion> coupled = coupled_motion(d, m);
   const FilteredCoupling coupled_reading = coupled ? filtered(d, *coupled) : FilteredCoupling{};
+  const double offset = offset_of(m);
   if (compliance && !coupled) {
     const double k = compliance->setting, lag = compliance->lag_s;
     twist.resize(n);
@@ -256,7 +257,7 @@ std::vector<RowInputs> row_inputs(const fit::FitData& d, std::span<const std::si
       r.omega = coupled->omega[i];
       if (d.alpha_from_encoder) r.alpha = coupled->alpha[i];
       const bool sliding = !coupled->stuck[i] && coupled_reading.settled[i];
-      if (!sliding) r.wound = coupled_reading.torque[i] + offset_of(m);
+      if (!sliding) r.wound = coupled_reading.torque[i] + offset;
       r.described = sliding && std::abs(r.omega) >= m.stick_speed;
       out.push_back(r);
       continue;
@@ -352,8 +353,9 @@ FitReport fit_extended(ExtendedModel& m, const fit::FitData& d, std::span<const 
     p.resize(used);
     m.unflatten(p);
   }
+  out.residuals = residuals(m, d, rows);
   double ss = 0.0, n = 0.0;
-  for (const double v : residuals(m, d, rows)) {
+  for (const double v : out.residuals) {
     if (std::isnan(v)) continue;
     ss += v * v;
     n += 1.0;

@@ -208,10 +208,12 @@ T extended_torque(const Layout& L, const T* p, const model::ThesisModel<T>& base
 
 // Least squares of the extended model over the rows it describes (Ceres,
 // autodiff, every parameter of the flat vector free except held base ones).
-// Returns the RMS residual over those rows.
+// Returns the RMS residual over those rows, and the residuals themselves
+// (residuals(): NaN where nothing predicts a row).
 struct FitReport {
   double rmse = 0.0;
   int iterations = 0;
+  std::vector<double> residuals;
 };
 FitReport fit_extended(ExtendedModel& m, const fit::FitData& d, std::span<const std::size_t> rows,
                        int max_iterations = 50);

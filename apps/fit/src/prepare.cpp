@@ -79,13 +79,15 @@ interchange::Capture resample(const interchange::Capture& c, double fs) {
   return r;
 }
 
-// Table 6's filter on one channel; unfiltered when the edge is too close to
-// Nyquist for the filter to mean anything.
+// Whether Table 6's filter runs on a channel of n samples: not when the
+// edge is too close to Nyquist for the filter to mean anything, nor on a
+// channel shorter than its padding.
 bool filters(const PrepOptions& o, double edge_hz, double fs, std::size_t n) {
   if (!o.filter || edge_hz >= 0.45 * fs) return false;
   return n > model::sosfiltfilt_padlen(model::design_cheby2_lowpass(o.order, o.stop_atten_db, edge_hz, fs));
 }
 
+// Table 6's filter on one channel, where it runs.
 std::vector<double> lowpass(const PrepOptions& o, double edge_hz, double fs,
                             std::vector<double> x) {
   if (!filters(o, edge_hz, fs, x.size())) return x;
