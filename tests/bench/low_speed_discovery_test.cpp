@@ -6,26 +6,17 @@
 #include <cmath>
 #include <limits>
 
+#include "findings.hpp"
 #include "knoblab/discovery/discrepancy.hpp"
 #include "knoblab/fit/fit_data.hpp"
 #include "two_body_plant.hpp"
 
 namespace {
 
+using knoblab::test::finding;
+using knoblab::test::param;
+
 using namespace knoblab;
-
-const discovery::Finding* finding(const discovery::DiscrepancyResult& r, discovery::EffectId id) {
-  for (const discovery::Finding& f : r.findings)
-    if (f.effect == id) return &f;
-  return nullptr;
-}
-
-double param(const discovery::Finding& f, const std::string& name) {
-  for (const auto& [n, v] : f.params)
-    if (n == name) return v;
-  ADD_FAILURE() << "no parameter " << name;
-  return 0.0;
-}
 
 // Coulomb 10 mN·m, a static excess of 3 mN·m falling off over 0.02 rad/s,
 // torque noise 0.3 mN·m, through a stiff gripper. The swept sine passes

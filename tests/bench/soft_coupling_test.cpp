@@ -11,12 +11,16 @@
 #include <cstdio>
 #include <limits>
 
+#include "findings.hpp"
 #include "../../apps/discovery/src/coupled_knob.hpp"
 #include "knoblab/discovery/discrepancy.hpp"
 #include "knoblab/fit/fit_data.hpp"
 #include "two_body_plant.hpp"
 
 namespace {
+
+using knoblab::test::finding;
+using knoblab::test::param;
 
 using namespace knoblab;
 using discovery::detail::CouplingSpec;
@@ -124,19 +128,6 @@ TEST(SoftCoupling, TheSimulatorRefusesACouplingOrKnobWithoutStiffnessOrInertia) 
   EXPECT_THROW(discovery::detail::simulate_coupled_knob(t, x, x, CouplingSpec{0.0, 0.0}, knob), std::invalid_argument);
   knob.inertia = 0.0;
   EXPECT_THROW(discovery::detail::simulate_coupled_knob(t, x, x, CouplingSpec{20.0, 0.0}, knob), std::invalid_argument);
-}
-
-const discovery::Finding* finding(const discovery::DiscrepancyResult& r, discovery::EffectId id) {
-  for (const discovery::Finding& f : r.findings)
-    if (f.effect == id) return &f;
-  return nullptr;
-}
-
-double param(const discovery::Finding& f, const std::string& name) {
-  for (const auto& [n, v] : f.params)
-    if (n == name) return v;
-  ADD_FAILURE() << "no parameter " << name;
-  return 0.0;
 }
 
 class SoftGripper : public ::testing::TestWithParam<double> {};

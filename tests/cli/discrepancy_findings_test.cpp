@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include "findings.hpp"
 #include "knoblab/discovery/discrepancy.hpp"
 #include "knoblab/fit/fit_data.hpp"
 #include "knoblab/model/effect_json.hpp"
@@ -18,6 +19,9 @@
 
 namespace knoblab::cli {
 namespace {
+
+using knoblab::test::finding;
+using knoblab::test::param;
 
 using discovery::DiscrepancyResult;
 using discovery::EffectId;
@@ -37,19 +41,6 @@ SimulationResult simulated(const std::string& knob, const std::string& effects, 
 DiscrepancyResult discover_with(const std::string& knob, const std::string& effects,
                                 std::optional<model::SweptSine> sweep = std::nullopt) {
   return discovery::discover(fit::prepare(simulated(knob, effects, 8.0, sweep).capture));
-}
-
-double param(const Finding& f, const std::string& name) {
-  for (const auto& [n, v] : f.params)
-    if (n == name) return v;
-  ADD_FAILURE() << "no parameter " << name;
-  return 0.0;
-}
-
-const Finding* finding(const DiscrepancyResult& r, EffectId id) {
-  for (const Finding& f : r.findings)
-    if (f.effect == id) return &f;
-  return nullptr;
 }
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "findings.hpp"
 #include "knoblab/discovery/discrepancy.hpp"
 #include "knoblab/fit/fit_data.hpp"
 #include "knoblab/sim/presets.hpp"
@@ -15,6 +16,8 @@
 
 namespace knoblab::cli {
 namespace {
+
+using knoblab::test::param;
 
 discovery::DiscrepancyResult discover_with(const std::string& effects,
                                            const std::string& knob = "moderate-detents",
@@ -26,13 +29,6 @@ discovery::DiscrepancyResult discover_with(const std::string& effects,
   req.effects = model::parse_effect_specs(effects);
   const SimulationResult s = simulate(req, nullptr);
   return discovery::discover(fit::prepare(s.capture), opt);
-}
-
-double param(const discovery::Finding& f, const std::string& name) {
-  for (const auto& [n, v] : f.params)
-    if (n == name) return v;
-  ADD_FAILURE() << "no parameter " << name;
-  return 0.0;
 }
 
 TEST(DiscrepancySim, CleanKnobHasNoFinding) {

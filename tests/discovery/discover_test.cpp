@@ -11,12 +11,15 @@
 #include <functional>
 #include <string>
 
+#include "findings.hpp"
 #include "effect_data.hpp"
 #include "knoblab/discovery/discrepancy.hpp"
 #include "knoblab/model/effects.hpp"
 
 namespace knoblab::discovery {
 namespace {
+
+using knoblab::test::param;
 
 using test_data::with_effect;
 
@@ -28,13 +31,6 @@ DiscrepancyOptions no_bar() {
   DiscrepancyOptions o;
   o.min_reported_gain = 0.0;
   return o;
-}
-
-double param(const Finding& f, const std::string& name) {
-  for (const auto& [n, v] : f.params)
-    if (n == name) return v;
-  ADD_FAILURE() << "no parameter " << name;
-  return 0.0;
 }
 
 TEST(Discover, CleanDataHasNoFinding) {

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "findings.hpp"
 #include "../../apps/discovery/src/candidates.hpp"
 #include "effect_data.hpp"
 #include "knoblab/discovery/discrepancy.hpp"
@@ -23,16 +24,11 @@
 namespace knoblab::discovery {
 namespace {
 
+using knoblab::test::param;
+
 constexpr double kPi = std::numbers::pi;
 
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
-
-double param(const Finding& f, const std::string& name) {
-  for (const auto& [n, v] : f.params)
-    if (n == name) return v;
-  ADD_FAILURE() << "no parameter " << name;
-  return 0.0;
-}
 
 // What a linear axis's text must never say.
 void expect_linear_words(const std::string& text) {
