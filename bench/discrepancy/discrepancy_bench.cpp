@@ -273,8 +273,8 @@ bool acceptance(const Options& opt, nlohmann::json& j) {
 // j["sweep"], the summary into j["sweep_summary"].
 void sweep(const bench::SweepPlant& plant, const Options& opt, nlohmann::json& j) {
   std::printf("\n%s plant: effect-size sweep, each case as it finishes\n", plant.name().c_str());
-  std::printf("%-17s %-18s %4s %6s %6s  %-18s %5s  %9s %9s %6s\n", "knob", "concealed", "seed", "target", "got",
-              "named first", "conf", "held-out", "after", "s");
+  std::printf("%-17s %-18s %4s %6s %6s %6s  %-18s %5s  %9s %9s %6s\n", "knob", "concealed", "seed", "target", "got",
+              "whole", "named first", "conf", "held-out", "after", "s");
   std::vector<bench::SweepCase> cases;
   bench::SweepOptions so;
   so.targets = bench::sweep_targets(opt.quick);
@@ -288,8 +288,9 @@ void sweep(const bench::SweepPlant& plant, const Options& opt, nlohmann::json& j
     } else {
       const bench::Analysis& a = c.analysis;
       const std::string named = a.tentative.empty() ? a.named : a.named + " (" + a.tentative + ")";
-      std::printf("%-17s %-18s %4llu %6.3g %6.3g  %-18s %5.2f  %9.4f %9.4f %6.2f\n", c.knob.c_str(), c.truth.c_str(),
-                  static_cast<unsigned long long>(c.seed), c.target, c.ratio, named.c_str(), a.confidence,
+      std::printf("%-17s %-18s %4llu %6.3g %6.3g %6.3g  %-18s %5.2f  %9.4f %9.4f %6.2f\n", c.knob.c_str(),
+                  c.truth.c_str(), static_cast<unsigned long long>(c.seed), c.target, c.ratio, c.raw_rms_Nm / c.r_Nm,
+                  named.c_str(), a.confidence,
                   a.before * 1e3, a.after * 1e3, a.seconds);
     }
     std::fflush(stdout);

@@ -4,9 +4,13 @@
 #include <cmath>
 #include <cstdio>
 #include <deque>
+#include <iterator>
 #include <map>
+#include <optional>
 
+#include "absorption.hpp"
 #include "knoblab/fit/fit_data.hpp"
+#include "knoblab/fit/knob_fit.hpp"
 #include "sizing.hpp"
 
 namespace knoblab::bench {
@@ -40,16 +44,34 @@ fit::FitData prepared_all_rows(const interchange::Capture& c) {
   return fit::prepare(c, o);
 }
 
+// The stick band the base fit estimates on a capture, below which discovery
+// leaves rows out (analysed_rows adds its floor of 2 % of the brisk speed).
+double slow_speed_of(const fit::FitData& d) {
+  const fit::FitResult f = fit::fit_knob(d);
+  return f.stick ? f.stick->dv : 0.0;
+}
+
 // One knob and seed's clean capture: what the effects are measured against.
 struct Clean {
   fit::FitData data;
   std::vector<std::size_t> rows;
   double r = 0.0;
+  std::optional<BaseAbsorption> base;  // what the clean knob's Eq. 6 takes up
 };
+
+// The base model discovery fitted to the clean capture, from its result.
+std::array<double, model::kThesisParamCount> base_params(const Analysis& a) {
+  const nlohmann::json params = nlohmann::json::parse(a.json).at("base").at("params");
+  std::array<double, model::kThesisParamCount> p{};
+  for (std::size_t k = 0; k < model::kThesisParamCount; ++k) p[k] = params.at(std::string(model::kThesisParamNames[k]));
+  return p;
+}
 
 // A setting tried: the effect size it gave, and its capture.
 struct Point {
-  double setting = 0.0, rms = 0.0;
+  double setting = 0.0;
+  double rms = 0.0;      // the part Eq. 6 cannot take up: what sizes the case
+  double raw_rms = 0.0;  // the whole change
   interchange::Capture capture;
 };
 
@@ -123,9 +145,17 @@ class Sizer {
       const fit::FitData d = prepared_all_rows(c);
       std::vector<double> change(d.size());
       for (std::size_t i = 0; i < d.size(); ++i) change[i] = d.torque[i] - clean_.data.torque[i];
+      // The rows discovery analyses on both captures: an effect can widen
+      // the stick band the base fits (a Stribeck curve's excess reads as
+      // stuck), and what it then hides is taken up by Eq. 7.
+      std::vector<std::size_t> rows;
+      const std::vector<std::size_t> moving = analysed_rows(d, slow_speed_of(d));
+      std::set_intersection(clean_.rows.begin(), clean_.rows.end(), moving.begin(), moving.end(),
+                            std::back_inserter(rows));
       // Floored: a setting with no effect at all still has a logarithm.
-      const double rms = std::max(rms_over(change, clean_.rows), 1e-15);
-      points_.push_back({setting, rms, std::move(c)});
+      const double raw = rms_over(change, rows);
+      const double rms = std::max(clean_.base->unabsorbed_rms(d, rows), 1e-15);
+      points_.push_back({setting, rms, raw, std::move(c)});
       return &points_.back();
     } catch (const std::exception& e) {
       error_ = e.what();
@@ -171,8 +201,11 @@ void run_sweep(const SweepPlant& plant, const SweepOptions& opt, const std::func
         const interchange::Capture capture = plant.capture(knob, nullptr, 0.0, base.seed);
         c0.analysis = analyse(capture);
         clean.data = prepared_all_rows(capture);
-        clean.rows = analysed_rows(clean.data, knob.params.stick.dv);
+        // The rows discovery analysed: faster than its fitted stick band
+        // (which can be wider than the knob's own).
+        clean.rows = analysed_rows(clean.data, nlohmann::json::parse(c0.analysis.json).at("slow_speed_rad_s"));
         clean.r = c0.analysis.before;
+        clean.base.emplace(clean.data, base_params(c0.analysis));
         c0.r_Nm = clean.r;
       } catch (const std::exception& e) {
         c0.error = e.what();
@@ -201,6 +234,7 @@ void run_sweep(const SweepPlant& plant, const SweepOptions& opt, const std::func
           c.setting = p->setting;
           c.spec = plant.describe(e, p->setting);
           c.effect_rms_Nm = p->rms;
+          c.raw_rms_Nm = p->raw_rms;
           c.ratio = p->rms / clean.r;
           try {
             c.analysis = analyse(p->capture);
@@ -284,7 +318,9 @@ nlohmann::json sweep_case_json(const SweepCase& c) {
     j["setting"] = c.setting;
     j["target_ratio"] = c.target;
     j["effect_rms_Nm"] = c.effect_rms_Nm;
+    j["raw_effect_rms_Nm"] = c.raw_rms_Nm;
     j["ratio"] = c.ratio;
+    j["raw_ratio"] = c.raw_rms_Nm / c.r_Nm;
   }
   if (!c.error.empty()) {
     j["error"] = c.error;

@@ -3,17 +3,21 @@
 // 0.5 to 30, and what discovery names in each; the clean knobs for false
 // alarms.
 //
-// Effect size = RMS of the effect's torque contribution over the rows
-// discovery analyses ÷ r. The contribution is the capture's torque as
-// discovery sees it (Table 6's preparation) minus the clean capture's, the
-// same knob and seed, so the sensor noise cancels; the rows are those
-// faster than 2 % of the 95th-percentile speed and the knob's stick band.
-// r is the clean capture's held-out residual RMS under the base model: the
-// noise the effect is seen through, the sensor's and whatever of the clean
-// knob Eq. 6 does not describe (on the two-body rig, r is close to its
-// torque noise; on the simulator the accelerometer's noise through M adds
-// to it). The setting for a target ratio is found on a log–log secant over
-// captures of the plant; cases are binned by the ratio they got.
+// Effect size = RMS of the part of the effect's torque that the base model
+// cannot take up, over the rows discovery analyses, ÷ r (absorption.hpp):
+// the change in residual under the clean knob's Eq. 6 from the clean
+// capture to this one (same knob and seed, so the sensor noise cancels),
+// less its projection on Eq. 6's parameter sensitivities. A quadratic drag
+// that is 98 % more viscous damping is a small discrepancy however large
+// its torque; the whole change is kept beside it (`raw_rms_Nm`). The rows
+// are those discovery analysed on the clean capture: faster than its
+// fitted stick band and 2 % of the 95th-percentile speed. r is the clean
+// capture's held-out residual RMS under the base model: the noise the
+// effect is seen through, the sensor's and whatever of the clean knob Eq. 6
+// does not describe (on the two-body rig, r is close to its torque noise;
+// on the simulator the accelerometer's noise through M adds to it). The
+// setting for a target ratio is found on a log–log secant over captures of
+// the plant; cases are binned by the ratio they got.
 #pragma once
 
 #include <cstddef>
@@ -38,7 +42,9 @@ struct SweepCase {
   // Effect size asked for and got (NaN for a clean knob).
   double target = std::numeric_limits<double>::quiet_NaN();
   double ratio = std::numeric_limits<double>::quiet_NaN();
-  double effect_rms_Nm = 0.0, r_Nm = 0.0;
+  // The effect's RMS that Eq. 6 cannot take up (absorption.hpp), which
+  // sizes the case, and the whole of its torque change.
+  double effect_rms_Nm = 0.0, raw_rms_Nm = 0.0, r_Nm = 0.0;
   Analysis analysis;
   std::string error;  // why the case has no analysis (a capture that failed)
   bool clean() const { return spec.empty(); }

@@ -102,6 +102,21 @@ TEST(Discover, NamesNonSinusoidalDetents) {
   EXPECT_NEAR(param(r.findings.front(), "h2_amplitude_Nm"), 0.6, 0.15);
 }
 
+// Two dips of unequal depth per detent: the second harmonic (2 N·m) outweighs
+// the fundamental (1 N·m), so Eq. 6's search takes the harmonic for the
+// detents; the shape is found at the detents' own period, not as a torque
+// at half the "detents'" frequency.
+TEST(Discover, DetentsWhoseSecondHarmonicOutweighsTheFundamentalAreShapedAtTheirOwnPeriod) {
+  const DiscrepancyResult r = discover(with_effect(5, [&](const fit::FitData& d, std::size_t i) {
+    const double phi = d.theta[i] / 0.2 + 0.9;
+    return 2.0 * std::sin(2 * phi) + 0.5 * std::cos(3 * phi);
+  }), no_bar());
+  ASSERT_FALSE(r.findings.empty()) << to_json(r);
+  EXPECT_EQ(r.findings.front().effect, EffectId::DetentShape) << to_json(r);
+  EXPECT_NEAR(param(r.findings.front(), "cycles_per_rev"), 5.0, 0.05) << to_json(r);
+  EXPECT_NEAR(param(r.findings.front(), "h2_amplitude_Nm"), 2.0, 0.3) << to_json(r);
+}
+
 TEST(Discover, AConsistentGainUnderTheBarIsTentative) {
   // The cogging of NamesASecondPeriodicTorqueAndItsPeriod: found and
   // consistent, but it cuts the held-out RMS by less than 20 %.

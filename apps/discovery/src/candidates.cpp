@@ -18,6 +18,10 @@ namespace knoblab::discovery::detail {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
+// How much lower a candidate's richer form must put the training RMS to be
+// taken over its simpler one: DiscrepancyOptions::parsimony_margin's
+// default, one bar for a richer form and a richer name.
+constexpr double kRicherFormMargin = 0.02;
 
 template <typename... A>
 std::string format(const char* f, A... a) {
@@ -223,6 +227,33 @@ bool base_has_detents(const ExtendedModel& m) {
   return m.has_detents();
 }
 
+// The base's detent search takes the strongest sinusoid over position. A
+// profile whose second harmonic outweighs its fundamental (two dips of
+// unequal depth per detent) leaves the base with that harmonic, and the
+// detents' own period is twice the base's: the shape with the base's term as
+// its second harmonic and the fundamental from the residual. Only where the
+// base's detents are fitted here and the doubled period still repeats
+// (≥ 1.5 cycles per revolution, two periods over the travel).
+std::optional<ExtendedModel> halved_detents(const ExtendedModel& m, const fit::FitData& d,
+                                            std::span<const std::size_t> train, const std::vector<double>& r) {
+  if (!m.base_fitted[model::kP_pos] || !m.base_fitted[model::kA_pos]) return std::nullopt;
+  const double period = 2.0 * m.base[model::kP_pos];  // P, in rad per radian of phase
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const std::size_t i : train) lo = std::min(lo, d.theta[i]), hi = std::max(hi, d.theta[i]);
+  if (1.0 / std::abs(period) < 1.5 || (hi - lo) / (2 * kPi * std::abs(period)) < 2.0) return std::nullopt;
+  ExtendedModel h = m;
+  h.base[model::kP_pos] = period;
+  h.base[model::kS_pos] = 0.5 * m.base[model::kS_pos];
+  const auto phase = [&](std::size_t i) { return d.theta[i] / period + h.base[model::kS_pos]; };
+  const auto b = regress({column(train, [&](std::size_t i) { return std::sin(phase(i)); })}, r);
+  h.base[model::kA_pos] = b[0];
+  std::vector<double> shape(2 * (kShapeHarmonics - 1), 0.0);
+  shape[0] = m.base[model::kA_pos];  // a₂: the base's term, now the second harmonic
+  ExtendedModel out = with(h, {EffectId::DetentShape, std::move(shape), 0.0});
+  fit_extended(out, d, train, 40);
+  return out;
+}
+
 }  // namespace
 
 std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& m,
@@ -255,21 +286,26 @@ std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& m,
       // The centre is fitted with the stiffnesses: about a wrong centre a
       // hardening spring leaves a quadratic torque that gravity would take up.
       // A linear spring (K₃ held at 0) is the simpler form; the cubic one
-      // must earn its parameter (BIC on the training rows).
+      // must earn its parameter by the margin a richer name must win by
+      // (kRicherFormMargin): a BIC alone lets the cubic take up a sliver of
+      // curvature the base leaves, and the third parameter then loses the
+      // name to gravity's two.
       if (m.flat().size() + 3 > static_cast<std::size_t>(kMaxParams)) return std::nullopt;  // no room
       const auto b1 = regress({column(train, [&](std::size_t i) { return d.theta[i] - mean; })}, r);
       ActiveEffect linear{id, {b1[0], 0.0, mean}, 0.0};
       linear.fixed = 1u << 1;
       ExtendedModel lin = with(m, linear), cub = with(m, {id, {b[0], b[1], mean}, 0.0});
       const double n = static_cast<double>(train.size());
-      const auto bic = [&](ExtendedModel& x) {
-        const double e = fit_extended(x, d, train, 40).rmse;
+      const auto bic = [&](ExtendedModel& x, double& rmse) {
+        rmse = fit_extended(x, d, train, 40).rmse;
         const std::vector<bool> free = x.free_mask();
         const auto k = static_cast<double>(std::count(free.begin(), free.end(), true));
-        return n * std::log(std::max(e * e, 1e-300)) + k * std::log(n);
+        return n * std::log(std::max(rmse * rmse, 1e-300)) + k * std::log(n);
       };
-      const double bic_lin = bic(lin), bic_cub = bic(cub);
-      c = bic_cub < bic_lin ? std::move(cub) : std::move(lin);
+      double rmse_lin = 0.0, rmse_cub = 0.0;
+      const double bic_lin = bic(lin, rmse_lin), bic_cub = bic(cub, rmse_cub);
+      const bool cubic = bic_cub < bic_lin && rmse_cub < (1.0 - kRicherFormMargin) * rmse_lin;
+      c = cubic ? std::move(cub) : std::move(lin);
       break;
     }
     case EffectId::PeriodicTorque: {
@@ -292,6 +328,8 @@ std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& m,
     case EffectId::DetentShape:
       if (!base_has_detents(m)) return std::nullopt;
       c = with(m, {id, std::vector<double>(2 * (kShapeHarmonics - 1), 0.0), 0.0});
+      fit_extended(*c, d, train, 40);
+      c = better_form(std::move(c), halved_detents(m, d, train, r), d, train);
       break;
     case EffectId::Stribeck: {
       std::vector<double> speed;

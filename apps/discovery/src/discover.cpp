@@ -423,7 +423,25 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
     opt.hooks.report("fitting the base model");
     fit::FitOptions base_options;
     base_options.hooks = opt.hooks;
-    const fit::FitResult base_fit = fit::fit_knob(subset(d, s.train), base_options);
+    fit::FitResult base_fit = fit::fit_knob(subset(d, s.train), base_options);
+    // A "detent" term under 1.5 cycles per revolution, or with fewer than two
+    // periods inside the swept range, is a slow trend over position, not
+    // detents: the base goes without it, and gravity or a spring must earn it
+    // back on held-out data under their own names. The knob's real detents,
+    // which the trend outbid, are searched for again above it.
+    const double range = *hi - *lo;
+    const auto slow_trend = [&](const fit::FitResult& f) {
+      const double period = 2 * std::numbers::pi * std::abs(f.params[model::kP_pos]);
+      return f.fitted[model::kA_pos] && (period > 2 * std::numbers::pi / 1.5 || range / period < 2.0);
+    };
+    if (slow_trend(base_fit)) {
+      fit::FitOptions above = base_options;
+      above.min_detents_per_rev = std::max(1.5, 2.0 * 2 * std::numbers::pi / std::max(range, 1e-9)) * 1.01;
+      if (above.min_detents_per_rev < above.max_detents_per_rev) {
+        fit::FitResult again = fit::fit_knob(subset(d, s.train), above);
+        if (!slow_trend(again)) base_fit = std::move(again);
+      }
+    }
     stick = base_fit.stick;
     // Near-stuck samples: inside the fitted stick band, and in any case below
     // 2 % of the brisk speed (an effect the base lacks can hide the band from
@@ -438,12 +456,7 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
       // crosses the play), so the larger one stands for both.
       m.breakaway = std::max(stick->D_pos, stick->D_neg);
     }
-    // A "detent" term under 1.5 cycles per revolution, or with fewer than two
-    // periods inside the swept range, is a slow trend over position, not
-    // detents: the base goes without it, and gravity or a spring must earn it
-    // back on held-out data under their own names.
-    const double periods = (*hi - *lo) / (2 * std::numbers::pi * std::abs(m.base[model::kP_pos]));
-    if (m.base_fitted[model::kA_pos] && (std::abs(m.base[model::kP_pos]) > 1.0 / 1.5 || periods < 2.0)) {
+    if (slow_trend(base_fit)) {
       for (const std::size_t k : {model::kA_pos, model::kP_pos, model::kS_pos}) m.base_fitted[k] = false;
       m.base[model::kA_pos] = 0.0;
     }
@@ -470,6 +483,7 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
   out.base = summary_of(m, current);
   out.train_rows = s.train.size();
   out.heldout_rows = s.held.size();
+  out.slow_speed = slow;
 
   // The base, then the model after each finding: their error figures chain.
   std::vector<Residuals> chain{base_res};

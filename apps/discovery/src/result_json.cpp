@@ -84,6 +84,7 @@ std::string to_json(const DiscrepancyResult& r, int indent) {
   }
   j["train_rows"] = r.train_rows;
   j["heldout_rows"] = r.heldout_rows;
+  j["slow_speed_rad_s"] = r.slow_speed;
   j["blocks"] = r.blocks;
   j["seconds"] = r.seconds;
   return j.dump(indent);

@@ -168,6 +168,9 @@ struct DiscrepancyResult {
   double min_reported_gain = 0.0;  // the bar this result was judged by
   std::vector<CandidateScore> candidates;
   std::size_t train_rows = 0, heldout_rows = 0;
+  // The rows slower than this (rad/s; m/s on a linear axis) were left out:
+  // the base's stick band, and at least 2 % of the 95th-percentile speed.
+  double slow_speed = 0.0;
   // Time blocks the recording was cut into: opt.blocks, or more for a
   // recording that passes each angle once (discover.cpp, blocks_for); 0 with
   // a held-out recording.
