@@ -5,7 +5,8 @@
 // cannot pass unseen.
 //
 //   knoblab-discrepancy-bench [--plant sim|two-body|both] [--two-body-alpha encoder|accelerometer]
-//                             [--quick] [--seeds N] [--effect ID] [--no-sweep] [--json FILE] [--check]
+//                             [--quick] [--seeds N] [--effect ID] [--knob NAME] [--no-sweep] [--json FILE]
+//                             [--check]
 //
 // On the simulator, the acceptance cases: effects sized by the clean knob's
 // residual, every case, the confusion table, the false-alarm rate, the
@@ -15,7 +16,9 @@
 // spring-return knob; --no-sweep leaves it out. The two-body rig's α comes
 // from its motor encoder, or with --two-body-alpha accelerometer from a
 // knob-side accelerometer.
-// --effect runs only that effect's cases (and the clean knobs that size them).
+// --effect runs only that effect's cases (and the clean knobs that size them);
+// --knob only that knob's sweep (moderate-detents, subtle-detents,
+// high-inertia, high-friction, spring-return).
 // --check exits 2 when a floor of the discovery's acceptance is missed on the
 // simulator's acceptance cases (named right ≥ 90 %, clean cases without
 // finding ≥ 90 %, held-out RMS down ≥ 20 % whenever a finding is reported);
@@ -147,7 +150,7 @@ Outcome run_case(const Case& c, std::uint64_t seed, fit::FitData* prepared = nul
 struct Options {
   bool quick = false, check = false, sweep = true, sim = true, two_body = true, accelerometer = false;
   int seeds = 1;
-  std::string json_path, only;
+  std::string json_path, only, knob;
 };
 
 // The simulator's acceptance cases (README.md, same title): true when
@@ -280,6 +283,7 @@ void sweep(const bench::SweepPlant& plant, const Options& opt, nlohmann::json& j
   so.targets = bench::sweep_targets(opt.quick);
   so.seeds = opt.seeds;
   so.only = opt.only;
+  so.knob = opt.knob;
   so.quick = opt.quick;
   bench::run_sweep(plant, so, [&](const bench::SweepCase& c) {
     if (!c.error.empty()) {
@@ -307,7 +311,7 @@ int main(int argc, char** argv) {
   Options opt;
   const char* usage =
       "usage: knoblab-discrepancy-bench [--plant sim|two-body|both] [--two-body-alpha encoder|accelerometer] "
-      "[--quick] [--seeds N] [--effect ID] [--no-sweep] [--json FILE] [--check]\n";
+      "[--quick] [--seeds N] [--effect ID] [--knob NAME] [--no-sweep] [--json FILE] [--check]\n";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--quick") opt.quick = true;
@@ -316,6 +320,7 @@ int main(int argc, char** argv) {
     else if (a == "--seeds" && i + 1 < argc) opt.seeds = std::max(1, std::atoi(argv[++i]));
     else if (a == "--json" && i + 1 < argc) opt.json_path = argv[++i];
     else if (a == "--effect" && i + 1 < argc) opt.only = argv[++i];
+    else if (a == "--knob" && i + 1 < argc) opt.knob = argv[++i];
     else if (a == "--plant" && i + 1 < argc) {
       const std::string p = argv[++i];
       if (p != "sim" && p != "two-body" && p != "both") {

@@ -189,6 +189,7 @@ void run_sweep(const SweepPlant& plant, const SweepOptions& opt, const std::func
   const std::vector<SweepEffect> effects = plant.effects();
   for (int seed = 1; seed <= opt.seeds; ++seed) {
     for (const SweepKnob& knob : sweep_knobs(opt.quick)) {
+      if (!opt.knob.empty() && opt.knob != knob.name) continue;
       SweepCase base;
       base.plant = plant.name();
       base.knob = knob.name;

@@ -54,6 +54,7 @@ struct SweepOptions {
   std::vector<double> targets;  // effect/noise ratios
   int seeds = 1;
   std::string only;             // one effect id; empty: every one
+  std::string knob;             // one knob's name; empty: every one
   bool quick = false;
 };
 
