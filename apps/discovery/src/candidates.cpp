@@ -165,7 +165,9 @@ struct ComplianceGrid {
 // motion read off the measured torque (the twist τ/k: stiff couplings), or
 // simulated behind the coupling (coupled_knob.hpp: soft ones), whose sharp
 // ring takes a grid twice as fine, started at the light damping a gripper
-// has; the better on the rows both predict is kept.
+// has. Both forms are candidates, and the held-out rows choose between them
+// as between effects: on the training rows the twist form wins by fitting
+// the noise its τ̈/k brings into the knob's acceleration.
 std::optional<ExtendedModel> compliance_form(const ExtendedModel& m, const fit::FitData& d,
                                              std::span<const std::size_t> train, bool simulated) {
   const double M = std::abs(m.base[model::kM_acc]);
@@ -217,10 +219,6 @@ std::optional<ExtendedModel> compliance_form(const ExtendedModel& m, const fit::
   return best;
 }
 
-std::optional<ExtendedModel> compliance_search(const ExtendedModel& m, const fit::FitData& d,
-                                               std::span<const std::size_t> train) {
-  return better_form(compliance_form(m, d, train, false), compliance_form(m, d, train, true), d, train);
-}
 
 double base_period(const ExtendedModel& m) { return std::abs(m.base[model::kP_pos]); }
 bool base_has_detents(const ExtendedModel& m) {
@@ -254,13 +252,11 @@ std::optional<ExtendedModel> halved_detents(const ExtendedModel& m, const fit::F
   return out;
 }
 
-}  // namespace
-
+// Effect `id` in its one form (compliance has two: candidate_forms).
 std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& m,
                                            const fit::FitData& d,
                                            std::span<const std::size_t> train,
                                            const std::vector<double>& r) {
-  if (train.size() < 50) return std::nullopt;
   auto theta = [&](std::size_t i) { return d.theta[i]; };
   std::optional<ExtendedModel> c;
   switch (id) {
@@ -411,7 +407,6 @@ std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& m,
       return grid_search(id, {0.5e-3, 1e-3, 2e-3, 4e-3, 8e-3, 16e-3}, m, d, train);
     case EffectId::Hysteresis:
       return grid_search(id, {1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2}, m, d, train);
-    case EffectId::Compliance: return compliance_search(m, d, train);
     case EffectId::Endstop: {
       // A stop engages only at the extremes of the travel: its position on a
       // grid of |θ| quantiles, its stiffness from the residual beyond it.
@@ -451,6 +446,21 @@ std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& m,
     return std::nullopt;
   }
   return c;
+}
+
+}  // namespace
+
+std::vector<ExtendedModel> candidate_forms(EffectId id, const ExtendedModel& m, const fit::FitData& d,
+                                           std::span<const std::size_t> train, const std::vector<double>& r) {
+  std::vector<ExtendedModel> out;
+  if (train.size() < 50) return out;
+  if (id == EffectId::Compliance) {
+    for (const bool simulated : {false, true})
+      if (auto c = compliance_form(m, d, train, simulated)) out.push_back(std::move(*c));
+    return out;
+  }
+  if (auto c = fit_candidate(id, m, d, train, r)) out.push_back(std::move(*c));
+  return out;
 }
 
 Params report_params(const ActiveEffect& e, const ExtendedModel& m) {

@@ -14,12 +14,13 @@
 namespace knoblab::discovery::detail {
 
 // The current model with effect `id` added and fitted on the training rows
-// (all parameters jointly), or nothing when the effect cannot apply (no
-// detents for a detent shape, no flat tops for clipping, …).
-std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& current,
-                                           const fit::FitData& d,
-                                           std::span<const std::size_t> train,
-                                           const std::vector<double>& residual);
+// (all parameters jointly), in each of its forms (compliance has two: the
+// twist read off the torque, the knob simulated behind the coupling; the
+// rest one); none when the effect cannot apply (no detents for a detent
+// shape, no flat tops for clipping, …). The caller judges the forms on
+// held-out rows.
+std::vector<ExtendedModel> candidate_forms(EffectId id, const ExtendedModel& current, const fit::FitData& d,
+                                           std::span<const std::size_t> train, const std::vector<double>& residual);
 
 // An effect's parameters as reported (SI; periods also as cycles/rev: on a
 // linear axis per 2π m).

@@ -503,6 +503,14 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
       std::vector<double> added;  // the torque it adds on the training rows (NaN: undescribed)
       SupportFigures where;       // held-out, where it acts
     };
+    // What the selection below asks of a term (and of one form over
+    // another): at least min_heldout_gain, or min_reported_gain where it
+    // acts, consistent over the held-out blocks (drop_consistency ≥ min_t)
+    // and a lower BIC.
+    const auto significant = [&](const Tried& c) {
+      const bool local = c.where.rows >= opt.min_support_rows && c.where.gain() >= opt.min_reported_gain;
+      return (c.gain >= opt.min_heldout_gain || local) && c.t >= opt.min_t && c.score.bic < c.before.bic;
+    };
     std::vector<Tried> tried;
     const std::string stage = "trying candidates, round " + std::to_string(round + 1);
     for (std::size_t k = 0; k < pool.size(); ++k) {
@@ -510,20 +518,32 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
       opt.hooks.report(stage, k, pool.size());
       // Periodic torques may repeat (cogging has several); the rest are one each.
       if (m.has(id) && id != EffectId::PeriodicTorque) continue;
-      std::optional<ExtendedModel> fitted = detail::fit_candidate(id, m, d, s.train, r_train);
+      std::vector<ExtendedModel> forms = detail::candidate_forms(id, m, d, s.train, r_train);
       opt.hooks.check();
-      if (!fitted) continue;
-      Tried t{std::move(*fitted), {}, {}, 0.0, 0.0, {}, {}};
-      const Residuals r = residuals_of(t.model, s);
-      t.added.resize(r.train.size());
-      for (std::size_t j = 0; j < r.train.size(); ++j) t.added[j] = current_res.train[j] - r.train[j];
-      t.where = on_support(current_res, r, support_of(current_res, r));
-      t.score = score(r, current_res, s);
-      t.before = score(current_res, r, s);
-      t.gain = t.before.rmse_held > 0 ? 1.0 - t.score.rmse_held / t.before.rmse_held : 0.0;
-      t.t = drop_consistency_of(t.before, t.score);
-      out.candidates.push_back({round, id, t.gain, t.t, false});
-      tried.push_back(std::move(t));
+      std::optional<Tried> best_form;
+      for (ExtendedModel& form : forms) {
+        Tried t{std::move(form), {}, {}, 0.0, 0.0, {}, {}};
+        const Residuals r = residuals_of(t.model, s);
+        t.added.resize(r.train.size());
+        for (std::size_t j = 0; j < r.train.size(); ++j) t.added[j] = current_res.train[j] - r.train[j];
+        t.where = on_support(current_res, r, support_of(current_res, r));
+        t.score = score(r, current_res, s);
+        t.before = score(current_res, r, s);
+        t.gain = t.before.rmse_held > 0 ? 1.0 - t.score.rmse_held / t.before.rmse_held : 0.0;
+        t.t = drop_consistency_of(t.before, t.score);
+        // Of an effect's forms, the one the held-out rows favour as they
+        // favour one effect over another: a significant one over one that
+        // is not, then the larger gain; of two that are not, the more
+        // consistent drop.
+        const auto better = [&](const Tried& a, const Tried& b) {
+          if (significant(a) != significant(b)) return significant(a);
+          return significant(a) ? a.gain > b.gain : a.t > b.t;
+        };
+        if (!best_form || better(t, *best_form)) best_form = std::move(t);
+      }
+      if (!best_form) continue;
+      out.candidates.push_back({round, id, best_form->gain, best_form->t, false});
+      tried.push_back(std::move(*best_form));
     }
     if (tried.empty()) break;
     std::sort(tried.begin(), tried.end(), [](const Tried& a, const Tried& b) { return a.gain > b.gain; });
@@ -534,10 +554,6 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
     // a term, so it does not veto one that improves every block; it only
     // lowers the chosen one's confidence (the runner-up below).
     // Judged over all held-out rows, or where it acts when that is a part.
-    const auto significant = [&](const Tried& c) {
-      const bool local = c.where.rows >= opt.min_support_rows && c.where.gain() >= opt.min_reported_gain;
-      return (c.gain >= opt.min_heldout_gain || local) && c.t >= opt.min_t && c.score.bic < c.before.bic;
-    };
     auto chosen = std::find_if(tried.begin(), tried.end(), significant);
     if (chosen == tried.end()) break;
     // Parsimony: of the significant candidates explaining the same residual,
