@@ -219,7 +219,6 @@ std::optional<ExtendedModel> compliance_form(const ExtendedModel& m, const fit::
   return best;
 }
 
-
 double base_period(const ExtendedModel& m) { return std::abs(m.base[model::kP_pos]); }
 bool base_has_detents(const ExtendedModel& m) {
   return m.has_detents();
