@@ -3,39 +3,36 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <stdexcept>
-#include <utility>
 
 namespace knoblab::bench {
 
-BaseAbsorption::BaseAbsorption(fit::FitData clean, const std::array<double, model::kThesisParamCount>& params)
-    : clean_(std::move(clean)), params_(params) {}
-
-double BaseAbsorption::unabsorbed_rms(const fit::FitData& captured, const std::vector<std::size_t>& rows) const {
+double unabsorbed_rms(const std::array<double, model::kThesisParamCount>& params, const fit::FitData& clean,
+                      const fit::FitData& captured, const std::vector<std::size_t>& rows) {
   if (rows.empty()) return 0.0;
   for (const std::size_t i : rows)
-    if (i >= captured.size() || i >= clean_.size())
+    if (i >= captured.size() || i >= clean.size())
       throw std::invalid_argument("effect size: a row past the end of a capture");
   const auto n = static_cast<Eigen::Index>(rows.size());
   constexpr auto kParams = static_cast<Eigen::Index>(model::kThesisParamCount);
-  const auto model = model::ThesisModel<double>::from_params(params_.data());
+  const auto model = model::ThesisModel<double>::from_params(params.data());
   Eigen::VectorXd y(n);
   for (Eigen::Index r = 0; r < n; ++r) {
     const std::size_t i = rows[static_cast<std::size_t>(r)];
     y(r) = (captured.torque[i] - model.torque(captured.kinematics(i))) -
-           (clean_.torque[i] - model.torque(clean_.kinematics(i)));
+           (clean.torque[i] - model.torque(clean.kinematics(i)));
   }
   Eigen::MatrixXd x(n, kParams);
   for (std::size_t k = 0; k < model::kThesisParamCount; ++k) {
     // Central differences: each term is smooth in its parameters off ω = 0,
     // and the rows are all moving.
-    std::array<double, model::kThesisParamCount> up = params_, down = params_;
-    const double h = 1e-6 * std::max(std::abs(params_[k]), 1e-3);
+    std::array<double, model::kThesisParamCount> up = params, down = params;
+    const double h = 1e-6 * std::max(std::abs(params[k]), 1e-3);
     up[k] += h;
     down[k] -= h;
     const auto m_up = model::ThesisModel<double>::from_params(up.data());
     const auto m_down = model::ThesisModel<double>::from_params(down.data());
     for (Eigen::Index r = 0; r < n; ++r) {
-      const auto kin = clean_.kinematics(rows[static_cast<std::size_t>(r)]);
+      const auto kin = clean.kinematics(rows[static_cast<std::size_t>(r)]);
       x(r, static_cast<Eigen::Index>(k)) = (m_up.torque(kin) - m_down.torque(kin)) / (2.0 * h);
     }
   }

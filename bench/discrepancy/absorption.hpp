@@ -23,19 +23,11 @@
 
 namespace knoblab::bench {
 
-class BaseAbsorption {
- public:
-  // params: the clean knob's fitted Eq. 6 (model::ThesisParam order).
-  BaseAbsorption(fit::FitData clean, const std::array<double, model::kThesisParamCount>& params);
-
-  // RMS over `rows` (of both captures: a row is a sample time) of the change
-  // in residual from the clean capture to `captured`, less its least-squares
-  // projection on the sensitivities there.
-  double unabsorbed_rms(const fit::FitData& captured, const std::vector<std::size_t>& rows) const;
-
- private:
-  fit::FitData clean_;
-  std::array<double, model::kThesisParamCount> params_;
-};
+// RMS over `rows` (of both captures: a row is a sample time) of the change
+// in residual under `params` (the clean knob's fitted Eq. 6, in
+// model::ThesisParam order) from `clean` to `captured`, less its
+// least-squares projection on Eq. 6's sensitivities there.
+double unabsorbed_rms(const std::array<double, model::kThesisParamCount>& params, const fit::FitData& clean,
+                      const fit::FitData& captured, const std::vector<std::size_t>& rows);
 
 }  // namespace knoblab::bench

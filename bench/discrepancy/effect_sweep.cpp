@@ -6,7 +6,6 @@
 #include <deque>
 #include <iterator>
 #include <map>
-#include <optional>
 
 #include "absorption.hpp"
 #include "knoblab/fit/fit_data.hpp"
@@ -56,12 +55,12 @@ struct Clean {
   fit::FitData data;
   std::vector<std::size_t> rows;
   double r = 0.0;
-  std::optional<BaseAbsorption> base;  // what the clean knob's Eq. 6 takes up
+  std::array<double, model::kThesisParamCount> base{};  // the Eq. 6 discovery fitted to it
 };
 
 // The base model discovery fitted to the clean capture, from its result.
-std::array<double, model::kThesisParamCount> base_params(const Analysis& a) {
-  const nlohmann::json params = nlohmann::json::parse(a.json).at("base").at("params");
+std::array<double, model::kThesisParamCount> base_params(const nlohmann::json& result) {
+  const nlohmann::json& params = result.at("base").at("params");
   std::array<double, model::kThesisParamCount> p{};
   for (std::size_t k = 0; k < model::kThesisParamCount; ++k) p[k] = params.at(std::string(model::kThesisParamNames[k]));
   return p;
@@ -154,7 +153,7 @@ class Sizer {
                             std::back_inserter(rows));
       // Floored: a setting with no effect at all still has a logarithm.
       const double raw = rms_over(change, rows);
-      const double rms = std::max(clean_.base->unabsorbed_rms(d, rows), 1e-15);
+      const double rms = std::max(unabsorbed_rms(clean_.base, clean_.data, d, rows), 1e-15);
       points_.push_back({setting, rms, raw, std::move(c)});
       return &points_.back();
     } catch (const std::exception& e) {
@@ -204,9 +203,10 @@ void run_sweep(const SweepPlant& plant, const SweepOptions& opt, const std::func
         clean.data = prepared_all_rows(capture);
         // The rows discovery analysed: faster than its fitted stick band
         // (which can be wider than the knob's own).
-        clean.rows = analysed_rows(clean.data, nlohmann::json::parse(c0.analysis.json).at("slow_speed_rad_s"));
+        const nlohmann::json result = nlohmann::json::parse(c0.analysis.json);
+        clean.rows = analysed_rows(clean.data, result.at("slow_speed_rad_s"));
         clean.r = c0.analysis.before;
-        clean.base.emplace(clean.data, base_params(c0.analysis));
+        clean.base = base_params(result);
         c0.r_Nm = clean.r;
       } catch (const std::exception& e) {
         c0.error = e.what();
