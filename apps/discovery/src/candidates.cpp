@@ -237,7 +237,7 @@ std::optional<ExtendedModel> halved_detents(const ExtendedModel& m, const fit::F
   const double period = 2.0 * m.base[model::kP_pos];  // P, in rad per radian of phase
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const std::size_t i : train) lo = std::min(lo, d.theta[i]), hi = std::max(hi, d.theta[i]);
-  if (1.0 / std::abs(period) < 1.5 || (hi - lo) / (2 * kPi * std::abs(period)) < 2.0) return std::nullopt;
+  if (!repeats_as_detents(period, hi - lo)) return std::nullopt;
   ExtendedModel h = m;
   h.base[model::kP_pos] = period;
   h.base[model::kS_pos] = 0.5 * m.base[model::kS_pos];
@@ -448,6 +448,10 @@ std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& m,
 }
 
 }  // namespace
+
+bool repeats_as_detents(double P, double travel) {
+  return std::abs(P) <= 1.0 / 1.5 && travel / (2 * kPi * std::abs(P)) >= 2.0;
+}
 
 std::vector<ExtendedModel> candidate_forms(EffectId id, const ExtendedModel& m, const fit::FitData& d,
                                            std::span<const std::size_t> train, const std::vector<double>& r) {

@@ -22,6 +22,12 @@ namespace knoblab::discovery::detail {
 std::vector<ExtendedModel> candidate_forms(EffectId id, const ExtendedModel& current, const fit::FitData& d,
                                            std::span<const std::size_t> train, const std::vector<double>& residual);
 
+// Whether a detent term of period P (rad of travel per rad of phase) is
+// detents over `travel` rad: at least 1.5 cycles per revolution and two
+// periods over the travel. Slower, it is a trend over position (a spring,
+// gravity).
+bool repeats_as_detents(double P, double travel);
+
 // An effect's parameters as reported (SI; periods also as cycles/rev: on a
 // linear axis per 2π m).
 Params report_params(const ActiveEffect& e, const ExtendedModel& m);

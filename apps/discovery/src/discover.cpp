@@ -431,8 +431,7 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
     // which the trend outbid, are searched for again above it.
     const double range = *hi - *lo;
     const auto slow_trend = [&](const fit::FitResult& f) {
-      const double period = 2 * std::numbers::pi * std::abs(f.params[model::kP_pos]);
-      return f.fitted[model::kA_pos] && (period > 2 * std::numbers::pi / 1.5 || range / period < 2.0);
+      return f.fitted[model::kA_pos] && !detail::repeats_as_detents(f.params[model::kP_pos], range);
     };
     if (slow_trend(base_fit)) {
       fit::FitOptions above = base_options;
@@ -511,6 +510,13 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
       const bool local = c.where.rows >= opt.min_support_rows && c.where.gain() >= opt.min_reported_gain;
       return (c.gain >= opt.min_heldout_gain || local) && c.t >= opt.min_t && c.score.bic < c.before.bic;
     };
+    // Of an effect's forms, the one the held-out rows favour as they favour
+    // one effect over another: a significant one over one that is not, then
+    // the larger gain; of two that are not, the more consistent drop.
+    const auto favoured = [&](const Tried& a, const Tried& b) {
+      if (significant(a) != significant(b)) return significant(a);
+      return significant(a) ? a.gain > b.gain : a.t > b.t;
+    };
     std::vector<Tried> tried;
     const std::string stage = "trying candidates, round " + std::to_string(round + 1);
     for (std::size_t k = 0; k < pool.size(); ++k) {
@@ -531,15 +537,7 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
         t.before = score(current_res, r, s);
         t.gain = t.before.rmse_held > 0 ? 1.0 - t.score.rmse_held / t.before.rmse_held : 0.0;
         t.t = drop_consistency_of(t.before, t.score);
-        // Of an effect's forms, the one the held-out rows favour as they
-        // favour one effect over another: a significant one over one that
-        // is not, then the larger gain; of two that are not, the more
-        // consistent drop.
-        const auto better = [&](const Tried& a, const Tried& b) {
-          if (significant(a) != significant(b)) return significant(a);
-          return significant(a) ? a.gain > b.gain : a.t > b.t;
-        };
-        if (!best_form || better(t, *best_form)) best_form = std::move(t);
+        if (!best_form || favoured(t, *best_form)) best_form = std::move(t);
       }
       if (!best_form) continue;
       out.candidates.push_back({round, id, best_form->gain, best_form->t, false});
