@@ -130,6 +130,15 @@ TEST(SoftCoupling, TheSimulatorRefusesACouplingOrKnobWithoutStiffnessOrInertia) 
   EXPECT_THROW(discovery::detail::simulate_coupled_knob(t, x, x, CouplingSpec{20.0, 0.0}, knob), std::invalid_argument);
 }
 
+// Discovery on the rig's capture with α from the motor encoder, as a rig
+// without an accelerometer records it.
+discovery::DiscrepancyResult discover_through_encoder(const bench::TwoBodyConfig& c) {
+  const bench::TwoBodyRun run = bench::run_two_body(c);
+  fit::PrepOptions encoder;
+  encoder.alpha = fit::AlphaSource::Encoder;
+  return discovery::discover(fit::prepare(run.capture, encoder));
+}
+
 class SoftGripper : public ::testing::TestWithParam<double> {};
 
 TEST_P(SoftGripper, IsNamedComplianceWithItsStiffnessThroughTheEncoder) {
@@ -140,10 +149,7 @@ TEST_P(SoftGripper, IsNamedComplianceWithItsStiffnessThroughTheEncoder) {
   // derivative over k, all noise; simulated, the coupling is found (measured
   // 15.6 and 28.3 N·m/rad, held-out RMS down 35 % and 50 %).
   const double stiffness = GetParam();
-  const bench::TwoBodyRun run = bench::run_two_body(knob_behind(stiffness, 0.15));
-  fit::PrepOptions encoder;
-  encoder.alpha = fit::AlphaSource::Encoder;
-  const discovery::DiscrepancyResult r = discovery::discover(fit::prepare(run.capture, encoder));
+  const discovery::DiscrepancyResult r = discover_through_encoder(knob_behind(stiffness, 0.15));
   ASSERT_FALSE(r.findings.empty()) << discovery::to_json(r);
   const discovery::Finding& f = r.findings.front();
   EXPECT_EQ(f.effect, discovery::EffectId::Compliance) << discovery::to_json(r);
@@ -174,10 +180,7 @@ TEST(SoftCoupling, AHeavyKnobsCouplingIsNamedByTheFormTheHeldOutRowsFavour) {
   c.coupling.stiffness = 60.0;
   c.coupling.damping = bench::Coupling::damping_for(0.1, 60.0, c.knob.inertia);
   c.camera.torque_noise_rms = 0.1e-3;
-  const bench::TwoBodyRun run = bench::run_two_body(c);
-  fit::PrepOptions encoder;
-  encoder.alpha = fit::AlphaSource::Encoder;
-  const discovery::DiscrepancyResult r = discovery::discover(fit::prepare(run.capture, encoder));
+  const discovery::DiscrepancyResult r = discover_through_encoder(c);
   ASSERT_FALSE(r.findings.empty()) << discovery::to_json(r);
   EXPECT_EQ(r.findings.front().effect, discovery::EffectId::Compliance) << discovery::to_json(r);
   if (const discovery::Finding* f = finding(r, discovery::EffectId::Compliance)) {
