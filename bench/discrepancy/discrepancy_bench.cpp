@@ -6,7 +6,7 @@
 //
 //   knoblab-discrepancy-bench [--plant sim|two-body|both] [--two-body-alpha encoder|accelerometer]
 //                             [--quick] [--seeds N] [--effect ID] [--knob NAME] [--no-sweep] [--json FILE]
-//                             [--check]
+//                             [--captures DIR] [--check]
 //
 // On the simulator, the acceptance cases: effects sized by the clean knob's
 // residual, every case, the confusion table, the false-alarm rate, the
@@ -19,6 +19,8 @@
 // --effect runs only that effect's cases (and the clean knobs that size them);
 // --knob only that knob's sweep (moderate-detents, subtle-detents,
 // high-inertia, high-friction, spring-return).
+// --captures writes every sweep case's capture there as CSV, to rerun one
+// with knoblab discrepancy --input.
 // --check exits 2 when a floor of the discovery's acceptance is missed on the
 // simulator's acceptance cases (named right ≥ 90 %, clean cases without
 // finding ≥ 90 %, held-out RMS down ≥ 20 % whenever a finding is reported);
@@ -150,7 +152,7 @@ Outcome run_case(const Case& c, std::uint64_t seed, fit::FitData* prepared = nul
 struct Options {
   bool quick = false, check = false, sweep = true, sim = true, two_body = true, accelerometer = false;
   int seeds = 1;
-  std::string json_path, only, knob;
+  std::string json_path, only, knob, captures_dir;
 };
 
 // The simulator's acceptance cases (README.md, same title): true when
@@ -285,6 +287,7 @@ void sweep(const bench::SweepPlant& plant, const Options& opt, nlohmann::json& j
   so.only = opt.only;
   so.knob = opt.knob;
   so.quick = opt.quick;
+  so.captures_dir = opt.captures_dir;
   bench::run_sweep(plant, so, [&](const bench::SweepCase& c) {
     if (!c.error.empty()) {
       std::printf("%-17s %-18s %4llu  %s\n", c.knob.c_str(), c.truth.c_str(), static_cast<unsigned long long>(c.seed),
@@ -311,7 +314,7 @@ int main(int argc, char** argv) {
   Options opt;
   const char* usage =
       "usage: knoblab-discrepancy-bench [--plant sim|two-body|both] [--two-body-alpha encoder|accelerometer] "
-      "[--quick] [--seeds N] [--effect ID] [--knob NAME] [--no-sweep] [--json FILE] [--check]\n";
+      "[--quick] [--seeds N] [--effect ID] [--knob NAME] [--no-sweep] [--json FILE] [--captures DIR] [--check]\n";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--quick") opt.quick = true;
@@ -321,6 +324,7 @@ int main(int argc, char** argv) {
     else if (a == "--json" && i + 1 < argc) opt.json_path = argv[++i];
     else if (a == "--effect" && i + 1 < argc) opt.only = argv[++i];
     else if (a == "--knob" && i + 1 < argc) opt.knob = argv[++i];
+    else if (a == "--captures" && i + 1 < argc) opt.captures_dir = argv[++i];
     else if (a == "--plant" && i + 1 < argc) {
       const std::string p = argv[++i];
       if (p != "sim" && p != "two-body" && p != "both") {

@@ -4,12 +4,15 @@
 #include <cmath>
 #include <cstdio>
 #include <deque>
+#include <filesystem>
 #include <iterator>
 #include <map>
 
 #include "absorption.hpp"
 #include "knoblab/fit/fit_data.hpp"
 #include "knoblab/fit/knob_fit.hpp"
+#include "knoblab/interchange/csv.hpp"
+#include "knoblab/model/effect_table.hpp"
 #include "sizing.hpp"
 
 namespace knoblab::bench {
@@ -177,6 +180,12 @@ std::string mNm(double x) {
   return buf;
 }
 
+void keep_capture(const SweepOptions& opt, const interchange::Capture& c, const std::string& name) {
+  if (opt.captures_dir.empty()) return;
+  std::filesystem::create_directories(opt.captures_dir);
+  interchange::write_csv(c, std::filesystem::path(opt.captures_dir) / (name + ".csv"));
+}
+
 }  // namespace
 
 std::vector<double> sweep_targets(bool quick) {
@@ -199,6 +208,7 @@ void run_sweep(const SweepPlant& plant, const SweepOptions& opt, const std::func
       c0.truth = knob.truth;
       try {
         const interchange::Capture capture = plant.capture(knob, nullptr, 0.0, base.seed);
+        keep_capture(opt, capture, knob.name + "-clean-" + std::to_string(seed));
         c0.analysis = analyse(capture);
         clean.data = prepared_all_rows(capture);
         // The rows discovery analysed: faster than its fitted stick band
@@ -238,6 +248,8 @@ void run_sweep(const SweepPlant& plant, const SweepOptions& opt, const std::func
           c.raw_rms_Nm = p->raw_rms;
           c.ratio = p->rms / clean.r;
           try {
+            keep_capture(opt, p->capture,
+                         knob.name + "-" + e.id + "-" + model::shortest_number(target) + "-" + std::to_string(seed));
             c.analysis = analyse(p->capture);
           } catch (const std::exception& ex) {
             c.error = ex.what();

@@ -56,6 +56,9 @@ struct SweepOptions {
   std::string only;             // one effect id; empty: every one
   std::string knob;             // one knob's name; empty: every one
   bool quick = false;
+  // Each case's capture written there as CSV (knob-effect-target-seed.csv;
+  // clean knobs as knob-clean-seed.csv), for knoblab discrepancy --input.
+  std::string captures_dir;
 };
 
 // The targets: 0.5–30, fewer when quick.
