@@ -69,6 +69,18 @@ TEST(Histogram, EmptyHistogramSummarisesToZeros) {
   EXPECT_EQ(s.max_ns, 0);
 }
 
+TEST(Histogram, DoublingBinsSumFineBinsUnderEachDoublingEdgeAndKeepTheOverflowLast) {
+  Histogram<1000, 10> h;  // 1 µs bins up to 10 µs: coarse edges 1, 2, 4, 8, 10 µs
+  for (std::int64_t ns : {500, 1500, 2500, 3500, 7000, 8500, 9999, 12000, 40000}) h.record(ns);
+  const DoublingBins d = doubling_bins(h.bins(), 1000, 1000);
+  EXPECT_EQ(d.upper_ns, (std::vector<std::int64_t>{1000, 2000, 4000, 8000, 10000}));
+  // [0,1) | [1,2) | [2,4) | [4,8) | [8,10) | ≥ 10 µs
+  EXPECT_EQ(d.counts, (std::vector<std::uint64_t>{1, 1, 2, 1, 2, 2}));
+  std::uint64_t total = 0;
+  for (const auto c : d.counts) total += c;
+  EXPECT_EQ(total, h.count);
+}
+
 TEST(TimingStats, JsonCarriesTheSummary) {
   auto stats = std::make_unique<TimingStats>();
   stats->period_ns = 100'000;

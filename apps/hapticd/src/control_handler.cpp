@@ -74,8 +74,13 @@ void ControlHandler::publish_stats(control::Server& server) {
   const auto now = std::chrono::steady_clock::now();
   if (now < next_stats_) return;
   next_stats_ = now + std::chrono::seconds(1);
-  const rt::TimingSummary t = rt::summarize(daemon_.stats().read());
+  const rt::TimingStats raw = daemon_.stats().read();
+  const rt::TimingSummary t = rt::summarize(raw);
   const RecorderStats r = daemon_.recorder_stats();
+  // Wake-up latency since start on doubling bins from 1 µs, for a display.
+  const rt::DoublingBins bins = rt::doubling_bins(raw.wakeup.bins(), rt::WakeupHistogram::kBinNs, 1000);
+  json upper = json::array();
+  for (const std::int64_t ns : bins.upper_ns) upper.push_back(static_cast<double>(ns) * 1e-3);
   server.publish({"stats",
                   {{"cycles", t.cycles},
                    {"rate_hz", daemon_.config().core.rate_hz},
@@ -85,6 +90,7 @@ void ControlHandler::publish_stats(control::Server& server) {
                                           {"max", static_cast<double>(t.wakeup.max_ns) * 1e-3}}},
                    {"cycle_cost_us", {{"p99", static_cast<double>(t.compute.p99_ns) * 1e-3},
                                       {"max", static_cast<double>(t.compute.max_ns) * 1e-3}}},
+                   {"wakeup_histogram_us", {{"upper", upper}, {"counts", bins.counts}}},
                    {"ring_dropped", daemon_.ring_dropped()},
                    {"recorder_buffered", r.buffered}}});
 }

@@ -44,6 +44,23 @@ HistogramSummary summarize(std::span<const std::uint64_t> bins, std::int64_t bin
   return s;
 }
 
+DoublingBins doubling_bins(std::span<const std::uint64_t> bins, std::int64_t bin_ns, std::int64_t first_edge_ns) {
+  DoublingBins out;
+  if (bins.empty() || bin_ns <= 0 || first_edge_ns <= 0) return out;
+  const std::int64_t top = static_cast<std::int64_t>(bins.size() - 1) * bin_ns;
+  for (std::int64_t edge = first_edge_ns; edge < top; edge *= 2) out.upper_ns.push_back(edge);
+  out.upper_ns.push_back(top);
+  out.counts.assign(out.upper_ns.size() + 1, 0);
+  std::size_t coarse = 0;
+  for (std::size_t b = 0; b + 1 < bins.size(); ++b) {
+    const std::int64_t upper = (static_cast<std::int64_t>(b) + 1) * bin_ns;
+    while (coarse < out.upper_ns.size() && upper > out.upper_ns[coarse]) ++coarse;
+    out.counts[coarse] += bins[b];
+  }
+  out.counts.back() += bins.back();
+  return out;
+}
+
 TimingSummary summarize(const TimingStats& stats) noexcept {
   TimingSummary s;
   s.period_ns = stats.period_ns;

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <span>
+#include <vector>
 
 namespace knoblab::rt {
 
@@ -67,6 +68,17 @@ std::int64_t quantile_ns(std::span<const std::uint64_t> bins, std::int64_t bin_n
 HistogramSummary summarize(std::span<const std::uint64_t> bins, std::int64_t bin_ns,
                            std::uint64_t count, std::int64_t sum_ns, std::int64_t min_ns,
                            std::int64_t max_ns) noexcept;
+
+// A fine histogram summed into bins whose upper edges double from
+// `first_edge_ns` up to the fine range's top: what a display draws on a log
+// axis (1, 2, 4 … µs). counts has one entry more than upper_ns: the last is
+// everything at or above the last edge, the overflow bin included. A fine
+// bin goes whole into the coarse bin holding its upper edge.
+struct DoublingBins {
+  std::vector<std::int64_t> upper_ns;
+  std::vector<std::uint64_t> counts;
+};
+DoublingBins doubling_bins(std::span<const std::uint64_t> bins, std::int64_t bin_ns, std::int64_t first_edge_ns);
 
 template <std::int64_t BinNs, std::size_t Bins>
 std::int64_t quantile_ns(const Histogram<BinNs, Bins>& h, double q) noexcept {

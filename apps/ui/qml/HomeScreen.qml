@@ -1,0 +1,47 @@
+// The first screen: the main jobs as big buttons, and what hapticd is doing.
+import QtQuick
+import QtQuick.Layouts
+
+Item {
+    id: home
+    required property DaemonLink link
+    signal open(string screen)
+
+    ColumnLayout {
+        anchors.fill: parent
+        anchors.margins: Theme.gap * 2
+        spacing: Theme.gap * 2
+
+        Text {
+            text: "Haptic Camera and knob lab"
+            color: Theme.text
+            font.pixelSize: Theme.fontTitle
+            font.bold: true
+        }
+        Text {
+            objectName: "daemonStatus"
+            Layout.fillWidth: true
+            wrapMode: Text.WordWrap
+            text: home.link.connected
+                  ? "hapticd is " + (home.link.mode !== "" ? home.link.mode : "starting")
+                    + (home.link.state.recording ? ", recording" : "") + "."
+                  : "Waiting for hapticd at " + home.link.socket + (home.link.problem !== "" ? " (" + home.link.problem + ")" : "") + "."
+            color: Theme.muted
+            font.pixelSize: Theme.fontBody
+        }
+        GridLayout {
+            columns: 3
+            columnSpacing: Theme.gap * 2
+            rowSpacing: Theme.gap * 2
+            BigButton {
+                objectName: "systemButton"
+                label: "System"
+                detail: "loop timing, faults, calibration"
+                onActivated: home.open("system")
+            }
+        }
+        Item {
+            Layout.fillHeight: true
+        }
+    }
+}

@@ -1,0 +1,55 @@
+#include "ui_options.hpp"
+
+#include <cstdio>
+#include <stdexcept>
+
+namespace knoblab::ui {
+
+std::string ui_usage() {
+  return "usage: knoblab-ui [--socket PATH] [--no-supervise] [--fullscreen] [--size WxH] [--screen NAME]\n"
+         "                  [--screenshot OUT.png [--wait SECONDS]]\n"
+         "\n"
+         "The knoblab touchscreen front-end. It talks to hapticd through its control socket\n"
+         "(default /run/knoblab/hapticd.sock) and supervises it: if the UI stops, the motor\n"
+         "goes safe (--no-supervise: watch only). Screens: home, system.\n"
+         "--screenshot renders the first screen offscreen at --size, waits up to --wait s\n"
+         "(default 5) for hapticd's state, writes the PNG, checks that no text is clipped and\n"
+         "no QML warning was printed, and exits 0 (all well), 1 (a problem, printed) or 2.\n";
+}
+
+UiOptions parse_ui_options(const std::vector<std::string>& args) {
+  UiOptions o;
+  auto need = [&](std::size_t& i) -> const std::string& {
+    if (i + 1 >= args.size()) throw std::invalid_argument(args[i] + " needs a value");
+    return args[++i];
+  };
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a == "--socket") o.socket = need(i);
+    else if (a == "--no-supervise") o.supervise = false;
+    else if (a == "--fullscreen") o.fullscreen = true;
+    else if (a == "--screen") o.screen = need(i);
+    else if (a == "--screenshot") o.screenshot = need(i);
+    else if (a == "--help" || a == "-h") o.help = true;
+    else if (a == "--version") o.version = true;
+    else if (a == "--size") {
+      const std::string& v = need(i);
+      int w = 0, h = 0;
+      char extra = 0;
+      if (std::sscanf(v.c_str(), "%dx%d%c", &w, &h, &extra) != 2 || w < 320 || h < 240 || w > 7680 || h > 4320)
+        throw std::invalid_argument("--size must be WIDTHxHEIGHT in pixels (320x240 … 7680x4320), got '" + v + "'");
+      o.width = w, o.height = h;
+    } else if (a == "--wait") {
+      const std::string& v = need(i);
+      char* end = nullptr;
+      o.wait_s = std::strtod(v.c_str(), &end);
+      if (end == v.c_str() || *end || !(o.wait_s >= 0 && o.wait_s <= 600))
+        throw std::invalid_argument("--wait must be seconds in 0 … 600, got '" + v + "'");
+    } else {
+      throw std::invalid_argument("unknown option '" + a + "'");
+    }
+  }
+  return o;
+}
+
+}  // namespace knoblab::ui

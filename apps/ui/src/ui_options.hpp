@@ -1,0 +1,26 @@
+// knoblab-ui's command line.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace knoblab::ui {
+
+struct UiOptions {
+  std::string socket = "/run/knoblab/hapticd.sock";
+  bool supervise = true;
+  bool fullscreen = false;
+  int width = 1280, height = 800;  // the window (or screenshot) size
+  std::string screen = "home";     // the screen shown first
+  // Render the first screen offscreen to this PNG, check its layout, exit.
+  std::string screenshot;
+  double wait_s = 5.0;  // for hapticd's first state before the screenshot
+  bool help = false, version = false;
+};
+
+// Throws std::invalid_argument with a message for the user.
+UiOptions parse_ui_options(const std::vector<std::string>& args);
+std::string ui_usage();
+
+}  // namespace knoblab::ui

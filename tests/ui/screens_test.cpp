@@ -1,0 +1,103 @@
+// Every screen rendered offscreen at the two panel sizes the appliance is
+// designed for, against hapticd on the sim backend: knoblab-ui --screenshot
+// exits 0 only when the image is not blank, no text is clipped and QML said
+// no warning. The PNGs stay in build/ui-screens for people to look at.
+#include <gtest/gtest.h>
+
+#include <QImage>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "hapticd_process.hpp"
+#include "process.hpp"
+
+namespace knoblab::ui {
+namespace {
+
+using test::Hapticd;
+using test::ScratchDir;
+
+struct Shot {
+  std::optional<int> exit_code;
+  std::string out, err;
+  QImage image;
+};
+
+Shot screenshot(const std::string& socket, const std::string& screen, const std::string& size,
+                const std::filesystem::path& png, const std::string& wait = "20") {
+  ScratchDir logs;
+  const pid_t pid = test::spawn({KNOBLAB_UI_PATH, "--socket", socket, "--screen", screen, "--size", size,
+                                 "--screenshot", png.string(), "--wait", wait},
+                                (logs / "out").string(), (logs / "err").string());
+  Shot s;
+  s.exit_code = test::wait_exit(pid, std::chrono::seconds(60));
+  s.out = test::read_file(logs / "out");
+  s.err = test::read_file(logs / "err");
+  s.image.load(QString::fromStdString(png.string()));
+  return s;
+}
+
+// "name: text" lines knoblab-ui prints for the named texts on screen.
+std::string named(const std::string& out, const std::string& name) {
+  const std::string key = name + ": ";
+  const auto at = out.find(key);
+  if (at == std::string::npos) return {};
+  const auto end = out.find('\n', at);
+  return out.substr(at + key.size(), end - at - key.size());
+}
+
+class Screens : public ::testing::TestWithParam<std::tuple<std::string, std::string>> {};
+
+TEST_P(Screens, RenderWholeWithTheLoopRunning) {
+  const auto& [screen, size] = GetParam();
+  Hapticd daemon;
+  ASSERT_TRUE(daemon.ready()) << daemon.log();
+  std::filesystem::create_directories(KNOBLAB_UI_SCREENS_DIR);
+  const std::filesystem::path png = std::filesystem::path(KNOBLAB_UI_SCREENS_DIR) / (screen + "-" + size + ".png");
+  std::filesystem::remove(png);
+  const Shot s = screenshot(daemon.socket(), screen, size, png);
+  EXPECT_EQ(s.exit_code, 0) << s.err;
+  ASSERT_FALSE(s.image.isNull()) << png;
+  EXPECT_EQ(std::to_string(s.image.width()) + "x" + std::to_string(s.image.height()), size);
+  // The status strip shows the loop turning, at about the rate it was set to.
+  EXPECT_EQ(named(s.out, "connection"), "● hapticd") << s.out;
+  const std::string loop = named(s.out, "loop");
+  EXPECT_TRUE(loop.find("kHz") != std::string::npos || loop.find("Hz") != std::string::npos) << s.out;
+  EXPECT_EQ(named(s.out, "mode"), "idle") << s.out;
+  EXPECT_EQ(named(s.out, "estop"), "e-stop ok") << s.out;
+}
+
+INSTANTIATE_TEST_SUITE_P(AtPanelSizes, Screens,
+                         ::testing::Combine(::testing::Values("home", "system"),
+                                            ::testing::Values("1024x600", "1280x800")),
+                         [](const auto& p) {
+                           std::string name = std::get<0>(p.param) + "_" + std::get<1>(p.param);
+                           for (char& c : name)
+                             if (c == 'x') c = '_';
+                           return name;
+                         });
+
+TEST(Screens, WithoutHapticdTheScreensStillRenderAndSayTheDaemonIsMissing) {
+  ScratchDir dir;
+  const std::filesystem::path png = dir / "home.png";
+  const Shot s = screenshot((dir / "nobody.sock").string(), "home", "1024x600", png, "0.5");
+  EXPECT_EQ(s.exit_code, 0) << s.err;
+  EXPECT_FALSE(s.image.isNull());
+  EXPECT_EQ(named(s.out, "connection"), "○ hapticd lost") << s.out;
+  EXPECT_EQ(named(s.out, "loop"), "loop –") << s.out;
+  EXPECT_NE(named(s.out, "daemonStatus").find("Waiting for hapticd"), std::string::npos) << s.out;
+  EXPECT_NE(s.err.find("no state from hapticd"), std::string::npos) << s.err;
+}
+
+TEST(Screens, AnUnknownScreenIsNamedInTheMessageBarNotAWarning) {
+  ScratchDir dir;
+  const Shot s = screenshot((dir / "nobody.sock").string(), "warp", "1024x600", dir / "x.png", "0");
+  EXPECT_EQ(s.exit_code, 0) << s.err;
+  EXPECT_NE(named(s.out, "message"), "") << s.out;
+  EXPECT_NE(named(s.out, "message").find("no screen called warp"), std::string::npos) << s.out;
+}
+
+}  // namespace
+}  // namespace knoblab::ui
