@@ -6,6 +6,11 @@
 // command moves on. Drawn only when stderr is a terminal and --quiet was
 // not given: a pipe, a file or a test sees nothing. Erased before the
 // command prints its results, and when it ends.
+//
+// A program running knoblab (knoblab-ui) sets KNOBLAB_PROGRESS=json and gets
+// each step as one JSON line on stderr instead, whatever stderr is:
+//
+//   {"progress":{"command":"discrepancy","stage":"trying candidates, round 1","done":3,"total":15}}
 #pragma once
 
 #include <cstddef>
@@ -20,9 +25,11 @@ namespace knoblab::cli {
 
 class Progress {
  public:
+  enum class Style { line, json };
   // Draws on `out` when `enabled`.
-  Progress(std::string command, bool enabled, std::FILE* out = stderr);
-  // Enabled when stderr is a terminal and the command has no --quiet.
+  Progress(std::string command, bool enabled, std::FILE* out = stderr, Style style = Style::line);
+  // Enabled when stderr is a terminal and the command has no --quiet; JSON
+  // lines whenever KNOBLAB_PROGRESS=json.
   static Progress on_stderr(const Args& args, std::string command);
   ~Progress();
   Progress(const Progress&) = delete;
@@ -41,6 +48,7 @@ class Progress {
   std::string command_;
   bool enabled_;
   std::FILE* out_;
+  Style style_;
   std::string shown_;  // the line on screen, empty when none
 };
 

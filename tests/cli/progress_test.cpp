@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include "knoblab/store/store.hpp"
@@ -64,6 +65,21 @@ TEST(ProgressLine, DrawsNothingWhenNotEnabled) {
   EXPECT_EQ(d.text(), "");
 }
 
+TEST(ProgressLine, AsJsonEachStepIsOneLineThatAProgramCanRead) {
+  Drawn d;
+  {
+    cli::Progress p("discrepancy", true, d.file(), cli::Progress::Style::json);
+    p.show("fitting the base");
+    p.show("fitting the base");  // unchanged: not repeated
+    p.show("trying candidates, round 1", 3, 15);
+    p.clear();  // lines are not erased
+  }
+  EXPECT_EQ(d.text(),
+            "{\"progress\":{\"command\":\"discrepancy\",\"done\":0,\"stage\":\"fitting the base\",\"total\":0}}\n"
+            "{\"progress\":{\"command\":\"discrepancy\",\"done\":3,\"stage\":\"trying candidates, round 1\","
+            "\"total\":15}}\n");
+}
+
 class ProgressCli : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -97,6 +113,17 @@ TEST_F(ProgressCli, QuietOrAPipeShowsNoProgressLine) {
   ASSERT_EQ(piped.exit_code, 0) << piped.err;
   EXPECT_EQ(piped.err, "");
   EXPECT_EQ(piped.out.find('\r'), std::string::npos);
+}
+
+TEST_F(ProgressCli, WithKnoblabProgressJsonAPipeGetsTheStagesAsJsonLines) {
+  ::setenv("KNOBLAB_PROGRESS", "json", 1);
+  const RunResult piped = run_knoblab({"fit", "--capture", "1", "--db", db_});
+  ::unsetenv("KNOBLAB_PROGRESS");
+  ASSERT_EQ(piped.exit_code, 0) << piped.err;
+  EXPECT_NE(piped.err.find("{\"progress\":{\"command\":\"fit\",\"done\":0,\"stage\":\"fitting\""), std::string::npos)
+      << piped.err;
+  EXPECT_EQ(piped.err.find('\r'), std::string::npos) << piped.err;
+  EXPECT_NE(piped.out.find("stored as fit 1"), std::string::npos) << piped.out;
 }
 
 }  // namespace

@@ -25,11 +25,11 @@ struct Shot {
   QImage image;
 };
 
-Shot screenshot(const std::string& socket, const std::string& screen, const std::string& size,
-                const std::filesystem::path& png, const std::string& wait = "20") {
+Shot screenshot(const std::string& socket, const std::string& db, const std::string& screen,
+                const std::string& size, const std::filesystem::path& png, const std::string& wait = "20") {
   ScratchDir logs;
-  const pid_t pid = test::spawn({KNOBLAB_UI_PATH, "--socket", socket, "--screen", screen, "--size", size,
-                                 "--screenshot", png.string(), "--wait", wait},
+  const pid_t pid = test::spawn({KNOBLAB_UI_PATH, "--socket", socket, "--db", db, "--knoblab", KNOBLAB_CLI_PATH,
+                                 "--screen", screen, "--size", size, "--screenshot", png.string(), "--wait", wait},
                                 (logs / "out").string(), (logs / "err").string());
   Shot s;
   s.exit_code = test::wait_exit(pid, std::chrono::seconds(60));
@@ -54,10 +54,18 @@ TEST_P(Screens, RenderWholeWithTheLoopRunning) {
   const auto& [screen, size] = GetParam();
   Hapticd daemon;
   ASSERT_TRUE(daemon.ready()) << daemon.log();
+  // Real data in the library: a capture of the simulated knob, fitted, looked at.
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"simulate", "--knob", "moderate-detents", "--seconds", "3", "--db", daemon.db()},
+        std::vector<std::string>{"fit", "--capture", "1", "--db", daemon.db()},
+        std::vector<std::string>{"discrepancy", "--capture", "1", "--db", daemon.db()}}) {
+    const test::RunResult r = test::run_knoblab(args);
+    ASSERT_EQ(r.exit_code, 0) << args[0] << ": " << r.err;
+  }
   std::filesystem::create_directories(KNOBLAB_UI_SCREENS_DIR);
   const std::filesystem::path png = std::filesystem::path(KNOBLAB_UI_SCREENS_DIR) / (screen + "-" + size + ".png");
   std::filesystem::remove(png);
-  const Shot s = screenshot(daemon.socket(), screen, size, png);
+  const Shot s = screenshot(daemon.socket(), daemon.db(), screen, size, png);
   EXPECT_EQ(s.exit_code, 0) << s.err;
   ASSERT_FALSE(s.image.isNull()) << png;
   EXPECT_EQ(std::to_string(s.image.width()) + "x" + std::to_string(s.image.height()), size);
@@ -67,10 +75,14 @@ TEST_P(Screens, RenderWholeWithTheLoopRunning) {
   EXPECT_TRUE(loop.find("kHz") != std::string::npos || loop.find("Hz") != std::string::npos) << s.out;
   EXPECT_EQ(named(s.out, "mode"), "idle") << s.out;
   EXPECT_EQ(named(s.out, "estop"), "e-stop ok") << s.out;
+  if (screen == "library") {
+    EXPECT_EQ(named(s.out, "knobTitle"), "moderate-detents") << s.out;
+    EXPECT_EQ(named(s.out, "param.A_pos"), "11.0 mN·m") << s.out;  // the simulated knob's 11 mN·m detents
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(AtPanelSizes, Screens,
-                         ::testing::Combine(::testing::Values("home", "system"),
+                         ::testing::Combine(::testing::Values("home", "system", "library"),
                                             ::testing::Values("1024x600", "1280x800")),
                          [](const auto& p) {
                            std::string name = std::get<0>(p.param) + "_" + std::get<1>(p.param);
@@ -82,7 +94,7 @@ INSTANTIATE_TEST_SUITE_P(AtPanelSizes, Screens,
 TEST(Screens, WithoutHapticdTheScreensStillRenderAndSayTheDaemonIsMissing) {
   ScratchDir dir;
   const std::filesystem::path png = dir / "home.png";
-  const Shot s = screenshot((dir / "nobody.sock").string(), "home", "1024x600", png, "0.5");
+  const Shot s = screenshot((dir / "nobody.sock").string(), (dir / "none.sqlite").string(), "home", "1024x600", png, "0.5");
   EXPECT_EQ(s.exit_code, 0) << s.err;
   EXPECT_FALSE(s.image.isNull());
   EXPECT_EQ(named(s.out, "connection"), "○ hapticd lost") << s.out;
@@ -93,10 +105,19 @@ TEST(Screens, WithoutHapticdTheScreensStillRenderAndSayTheDaemonIsMissing) {
 
 TEST(Screens, AnUnknownScreenIsNamedInTheMessageBarNotAWarning) {
   ScratchDir dir;
-  const Shot s = screenshot((dir / "nobody.sock").string(), "warp", "1024x600", dir / "x.png", "0");
+  const Shot s = screenshot((dir / "nobody.sock").string(), (dir / "none.sqlite").string(), "warp", "1024x600",
+                            dir / "x.png", "0");
   EXPECT_EQ(s.exit_code, 0) << s.err;
   EXPECT_NE(named(s.out, "message"), "") << s.out;
   EXPECT_NE(named(s.out, "message").find("no screen called warp"), std::string::npos) << s.out;
+}
+
+TEST(Screens, AnEmptyLibrarySaysHowToFillIt) {
+  ScratchDir dir;
+  const Shot s = screenshot((dir / "nobody.sock").string(), (dir / "none.sqlite").string(), "library", "1280x800",
+                            dir / "library.png", "0.5");
+  EXPECT_EQ(s.exit_code, 0) << s.err;
+  EXPECT_NE(named(s.out, "libraryEmpty").find("No captures yet"), std::string::npos) << s.out;
 }
 
 }  // namespace

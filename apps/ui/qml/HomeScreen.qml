@@ -34,6 +34,12 @@ Item {
             columnSpacing: Theme.gap * 2
             rowSpacing: Theme.gap * 2
             BigButton {
+                objectName: "libraryButton"
+                label: "Knob library"
+                detail: "captured knobs, their fits and what the model leaves out"
+                onActivated: home.open("library")
+            }
+            BigButton {
                 objectName: "systemButton"
                 label: "System"
                 detail: "loop timing, faults, calibration"

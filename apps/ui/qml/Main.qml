@@ -7,6 +7,8 @@ import QtQuick.Controls
 ApplicationWindow {
     id: window
     required property DaemonLink link
+    required property KnobLibrary knobs
+    required property JobRunner jobs
     // The screen shown first (knoblab-ui --screen): home, or one above it.
     required property string startScreen
 
@@ -17,7 +19,8 @@ ApplicationWindow {
     onHeightChanged: Theme.scale = Math.min(width / 1024, height / 600)
 
     readonly property var screens: ({
-            system: systemScreen
+            system: systemScreen,
+            library: libraryScreen
         })
 
     function open(name) {
@@ -47,6 +50,13 @@ ApplicationWindow {
             link: window.link
         }
     }
+    Component {
+        id: libraryScreen
+        LibraryScreen {
+            knobs: window.knobs
+            jobs: window.jobs
+        }
+    }
 
     StackView {
         id: stack
@@ -67,6 +77,27 @@ ApplicationWindow {
         target: window.link
         function onMessage(text: string, level: string) {
             bar.show(text, level);
+        }
+        function onEvent(name: string, data: var) {
+            if (name === "capture_finished")
+                window.knobs.refresh();
+        }
+    }
+    Connections {
+        target: window.knobs
+        function onMessage(text: string, level: string) {
+            bar.show(text, level);
+        }
+    }
+    Connections {
+        target: window.jobs
+        function onMessage(text: string, level: string) {
+            bar.show(text, level);
+        }
+        function onFinished(kind: string, captureId: int, ok: bool, result: var, error: string) {
+            window.knobs.refresh();
+            bar.show(ok ? kind + " of capture " + captureId + " stored" : kind + " of capture " + captureId + ": " + error,
+                     ok ? "info" : "warning");
         }
     }
 }

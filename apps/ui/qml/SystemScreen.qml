@@ -154,25 +154,12 @@ Item {
                     font.pixelSize: Theme.fontBody
                 }
             }
-            Rectangle {
+            ActionButton {
                 objectName: "clearFaults"
                 visible: system.link.faults.length > 0
-                Layout.preferredWidth: clearLabel.implicitWidth + 3 * Theme.gap
-                Layout.preferredHeight: Theme.touch
-                radius: Theme.radius
-                color: clearTap.pressed ? Theme.line : Theme.raised
-                border.color: Theme.warning
-                Text {
-                    id: clearLabel
-                    anchors.centerIn: parent
-                    text: "Clear faults"
-                    color: Theme.text
-                    font.pixelSize: Theme.fontBody
-                }
-                TapHandler {
-                    id: clearTap
-                    onTapped: system.link.clearFault()
-                }
+                text: "Clear faults"
+                edge: Theme.warning
+                onActivated: system.link.clearFault()
             }
         }
 

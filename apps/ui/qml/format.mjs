@@ -67,3 +67,67 @@ export function bin(upper, k) {
         return "> " + micros(upper[upper.length - 1]);
     return micros(upper[k - 1]).replace(/ .*/, "") + "–" + micros(upper[k]);
 }
+
+// A fitted parameter of Eq. 6 (SI, as the fit stores it) as the screens show
+// it: its name in words, the value and its 95 % interval in presentation
+// units (mN·m and friends, detents per revolution, degrees).
+const params = {
+    M_acc: { label: "inertia M", unit: "mN·m/(rad/s²)", scale: 1000 },
+    B_vel_pos: { label: "damping B+", unit: "mN·m/(rad/s)", scale: 1000 },
+    B_vel_neg: { label: "damping B−", unit: "mN·m/(rad/s)", scale: 1000 },
+    C_vel_pos: { label: "Coulomb C+", unit: "mN·m", scale: 1000 },
+    C_vel_neg: { label: "Coulomb C−", unit: "mN·m", scale: 1000 },
+    A_pos: { label: "detent amplitude A", unit: "mN·m", scale: 1000 },
+    P_pos: { label: "detents per revolution", unit: "", invert: true },
+    S_pos: { label: "detent phase S", unit: "°", scale: 180 / Math.PI }
+};
+
+function shown(v, digits) {
+    const d = digits === undefined ? 3 : digits;
+    const a = Math.abs(v);
+    if (a !== 0 && (a < 0.01 || a >= 1e5))
+        return v.toExponential(d - 1);
+    return v.toPrecision(d);
+}
+
+export function param(name, value, ci95) {
+    const p = params[name];
+    const f = p === undefined ? (v => v) : p.invert ? (v => 1 / v) : (v => v * p.scale);
+    const unit = p === undefined ? "" : p.unit;
+    let interval = "";
+    if (ci95 !== undefined && ci95 !== null && ci95.length === 2) {
+        const lo = Math.min(f(ci95[0]), f(ci95[1])), hi = Math.max(f(ci95[0]), f(ci95[1]));
+        // As many digits as it takes to tell the ends apart (up to 6).
+        let digits = 3;
+        while (digits < 6 && shown(lo, digits) === shown(hi, digits))
+            ++digits;
+        interval = shown(lo, digits) + " … " + shown(hi, digits);
+    }
+    return {
+        label: p === undefined ? name : p.label,
+        value: shown(f(value)) + (unit !== "" ? " " + unit : ""),
+        interval: interval
+    };
+}
+
+// A torque in N·m as mN·m: "0.164 mN·m".
+export function torque(nm) {
+    if (nm === undefined || nm === null || isNaN(nm))
+        return "–";
+    return shown(nm * 1000) + " mN·m";
+}
+
+// Where a capture's axis pointed (the store's orientation: JSON such as
+// {"tilt_rad": 1.5708}, or words) in words: "axis tilted 90°".
+export function orientation(text) {
+    if (text === undefined || text === "")
+        return "";
+    try {
+        const o = JSON.parse(text);
+        if (o !== null && typeof o === "object" && o.tilt_rad !== undefined)
+            return "axis tilted " + Math.round(o.tilt_rad * 180 / Math.PI) + "°";
+    } catch (e) {
+        // Not JSON: words already.
+    }
+    return text;
+}

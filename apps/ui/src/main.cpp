@@ -14,6 +14,8 @@
 #include <vector>
 
 #include "daemon_link.hpp"
+#include "job_runner.hpp"
+#include "knob_library.hpp"
 #include "knoblab/version.hpp"
 #include "screen_check.hpp"
 #include "ui_options.hpp"
@@ -33,10 +35,11 @@ void keep_warnings(QtMsgType type, const QMessageLogContext& context, const QStr
 
 // Renders the window once hapticd's state is in (or the wait is over),
 // writes the PNG and checks it. Exit status: 0 all well, 1 a problem.
-int screenshot(QQuickWindow& window, knoblab::ui::DaemonLink& link, const UiOptions& o) {
+int screenshot(QQuickWindow& window, knoblab::ui::DaemonLink& link, const knoblab::ui::KnobLibrary& library,
+               const UiOptions& o) {
   QElapsedTimer waited;
   waited.start();
-  while (link.state().isEmpty() && waited.elapsed() < static_cast<qint64>(o.wait_s * 1000))
+  while ((link.state().isEmpty() || library.loading()) && waited.elapsed() < static_cast<qint64>(o.wait_s * 1000))
     QCoreApplication::processEvents(QEventLoop::AllEvents, 50);
   // Let bindings settle and animations (the message bar's) finish.
   QElapsedTimer settle;
@@ -96,9 +99,13 @@ int main(int argc, char** argv) {
   lo.socket = QString::fromStdString(o.socket);
   lo.supervise = o.supervise && o.screenshot.empty();
   knoblab::ui::DaemonLink link(lo);
+  knoblab::ui::KnobLibrary library(QString::fromStdString(o.db));
+  knoblab::ui::JobRunner jobs(QString::fromStdString(o.knoblab), QString::fromStdString(o.db));
 
   QQmlApplicationEngine engine;
   engine.setInitialProperties({{QStringLiteral("link"), QVariant::fromValue(&link)},
+                               {QStringLiteral("knobs"), QVariant::fromValue(&library)},
+                               {QStringLiteral("jobs"), QVariant::fromValue(&jobs)},
                                {QStringLiteral("startScreen"), QString::fromStdString(o.screen)},
                                {QStringLiteral("width"), o.width},
                                {QStringLiteral("height"), o.height}});
@@ -108,7 +115,7 @@ int main(int argc, char** argv) {
   if (engine.rootObjects().isEmpty()) return 2;
   auto* window = qobject_cast<QQuickWindow*>(engine.rootObjects().first());
   if (!window) return 2;
-  if (!o.screenshot.empty()) return screenshot(*window, link, o);
+  if (!o.screenshot.empty()) return screenshot(*window, link, library, o);
   if (o.fullscreen) window->showFullScreen();
   else window->show();
   return QGuiApplication::exec();

@@ -6,12 +6,15 @@
 namespace knoblab::ui {
 
 std::string ui_usage() {
-  return "usage: knoblab-ui [--socket PATH] [--no-supervise] [--fullscreen] [--size WxH] [--screen NAME]\n"
-         "                  [--screenshot OUT.png [--wait SECONDS]]\n"
+  return "usage: knoblab-ui [--socket PATH] [--db FILE] [--knoblab PATH] [--no-supervise] [--fullscreen]\n"
+         "                  [--size WxH] [--screen NAME] [--screenshot OUT.png [--wait SECONDS]]\n"
          "\n"
          "The knoblab touchscreen front-end. It talks to hapticd through its control socket\n"
          "(default /run/knoblab/hapticd.sock) and supervises it: if the UI stops, the motor\n"
-         "goes safe (--no-supervise: watch only). Screens: home, system.\n"
+         "goes safe (--no-supervise: watch only). It reads the store hapticd records into\n"
+         "(--db, default /var/lib/knoblab/lab.sqlite) and runs fits and discrepancy with the\n"
+         "knoblab command (--knoblab, default: knoblab on the PATH), which store their results\n"
+         "there. Screens: home, system, library.\n"
          "--screenshot renders the first screen offscreen at --size, waits up to --wait s\n"
          "(default 5) for hapticd's state, writes the PNG, checks that no text is clipped and\n"
          "no QML warning was printed, and exits 0 (all well), 1 (a problem, printed) or 2.\n";
@@ -26,6 +29,8 @@ UiOptions parse_ui_options(const std::vector<std::string>& args) {
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     if (a == "--socket") o.socket = need(i);
+    else if (a == "--db") o.db = need(i);
+    else if (a == "--knoblab") o.knoblab = need(i);
     else if (a == "--no-supervise") o.supervise = false;
     else if (a == "--fullscreen") o.fullscreen = true;
     else if (a == "--screen") o.screen = need(i);

@@ -9,6 +9,8 @@ namespace knoblab::ui {
 
 struct UiOptions {
   std::string socket = "/run/knoblab/hapticd.sock";
+  std::string db = "/var/lib/knoblab/lab.sqlite";  // the store, read only (hapticd writes it)
+  std::string knoblab = "knoblab";                  // the CLI that fits and finds discrepancies
   bool supervise = true;
   bool fullscreen = false;
   int width = 1280, height = 800;  // the window (or screenshot) size

@@ -53,4 +53,30 @@ TestCase {
         compare(Format.bin(upper, 2), "2.0–4.0 µs");
         compare(Format.bin(upper, 4), "> 2.00 ms");
     }
+
+    function test_parameters_are_shown_in_presentation_units_with_their_interval() {
+        const a = Format.param("A_pos", 0.011, [0.0109, 0.0111]);
+        compare(a.label, "detent amplitude A");
+        compare(a.value, "11.0 mN·m");
+        compare(a.interval, "10.9 … 11.1");
+        const p = Format.param("P_pos", 1 / 12, [1 / 12.5, 1 / 11.5]);
+        compare(p.value, "12.0");
+        compare(p.interval, "11.5 … 12.5");
+        compare(Format.param("S_pos", Math.PI / 2, undefined).value, "90.0 °");
+        compare(Format.param("M_acc", 4.79e-5, undefined).value, "0.0479 mN·m/(rad/s²)");
+        compare(Format.param("K_new", 2.5, undefined).label, "K_new");
+        // An interval too narrow for three digits gets as many as tell its ends apart.
+        compare(Format.param("A_pos", 0.011, [0.010995, 0.011014]).interval, "10.99 … 11.01");
+    }
+
+    function test_torque_in_millinewton_metres() {
+        compare(Format.torque(0.000164), "0.164 mN·m");
+        compare(Format.torque(undefined), "–");
+    }
+
+    function test_orientation_in_words() {
+        compare(Format.orientation('{"tilt_rad": 1.5707963}'), "axis tilted 90°");
+        compare(Format.orientation("tripod, dashboard"), "tripod, dashboard");
+        compare(Format.orientation(""), "");
+    }
 }

@@ -1,0 +1,258 @@
+// The knob library: every capture in the store (newest first) with its knob,
+// and the chosen one's fitted Eq. 6 parameters with their 95 % intervals and
+// the physics discrepancy discovery found missing. Fit and discrepancy run
+// from here (as the CLI runs them) and land in the same store.
+pragma ComponentBehavior: Bound
+import QtQuick
+import QtQuick.Layouts
+import "format.mjs" as Format
+
+Item {
+    id: library
+    required property KnobLibrary knobs
+    required property JobRunner jobs
+    // The capture shown on the right (0: the newest).
+    property int captureId: 0
+    readonly property var entry: {
+        const list = library.knobs.entries;
+        for (let i = 0; i < list.length; ++i)
+            if (list[i].capture_id === library.captureId)
+                return list[i];
+        return list.length > 0 ? list[0] : null;
+    }
+    readonly property bool busyHere: jobs.running && entry !== null && jobs.captureId === entry.capture_id
+
+    Component.onCompleted: library.knobs.refresh()
+
+    RowLayout {
+        anchors.fill: parent
+        anchors.margins: Theme.gap
+        spacing: Theme.gap
+
+        Rectangle {
+            Layout.preferredWidth: parent.width * 0.36
+            Layout.fillHeight: true
+            color: Theme.surface
+            radius: Theme.radius
+            border.color: Theme.line
+
+            Text {
+                objectName: "libraryEmpty"
+                visible: library.knobs.entries.length === 0
+                anchors.centerIn: parent
+                width: parent.width - 2 * Theme.gap
+                wrapMode: Text.WordWrap
+                horizontalAlignment: Text.AlignHCenter
+                text: library.knobs.loading ? "reading the library…" : "No captures yet. Capture a knob, or import one with knoblab import."
+                color: Theme.muted
+                font.pixelSize: Theme.fontBody
+            }
+            ListView {
+                id: list
+                anchors.fill: parent
+                anchors.margins: Theme.gap / 2
+                clip: true
+                spacing: Theme.gap / 2
+                model: library.knobs.entries
+                delegate: Rectangle {
+                    id: row
+                    required property var modelData
+                    readonly property bool chosen: library.entry !== null && library.entry.capture_id === row.modelData.capture_id
+                    width: ListView.view.width
+                    height: Theme.touch * 1.25
+                    radius: Theme.radius
+                    color: chosen ? Theme.raised : "transparent"
+                    border.color: chosen ? Theme.accent : Theme.line
+                    Column {
+                        anchors.verticalCenter: parent.verticalCenter
+                        x: Theme.gap
+                        width: parent.width - 2 * Theme.gap
+                        Text {
+                            width: parent.width
+                            elide: Text.ElideNone
+                            wrapMode: Text.NoWrap
+                            fontSizeMode: Text.HorizontalFit
+                            minimumPixelSize: Theme.fontSmall
+                            text: (row.modelData.knob !== "" ? row.modelData.knob : "no knob name") + "  ·  capture " + row.modelData.capture_id
+                            color: Theme.text
+                            font.pixelSize: Theme.fontBody
+                            font.bold: true
+                        }
+                        Text {
+                            width: parent.width
+                            fontSizeMode: Text.HorizontalFit
+                            minimumPixelSize: Math.round(Theme.fontSmall * 0.8)
+                            text: row.modelData.started_at.replace("T", " ").replace(/\..*|Z/, "")
+                                  + (row.modelData.fit !== null ? "  ·  fitted" : "")
+                                  + (row.modelData.discrepancy !== null ? "  ·  " + row.modelData.discrepancy.findings.length + " findings" : "")
+                            color: row.modelData.status === "complete" ? Theme.muted : Theme.warning
+                            font.pixelSize: Theme.fontSmall
+                        }
+                    }
+                    TapHandler {
+                        onTapped: library.captureId = row.modelData.capture_id
+                    }
+                }
+            }
+        }
+
+        Flickable {
+            id: detail
+            Layout.fillWidth: true
+            Layout.fillHeight: true
+            clip: true
+            contentHeight: body.implicitHeight
+            visible: library.entry !== null
+
+            ColumnLayout {
+                id: body
+                width: detail.width
+                spacing: Theme.gap
+
+                Text {
+                    objectName: "knobTitle"
+                    Layout.fillWidth: true
+                    wrapMode: Text.WordWrap
+                    text: library.entry !== null ? (library.entry.knob !== "" ? library.entry.knob : "capture " + library.entry.capture_id) : ""
+                    color: Theme.text
+                    font.pixelSize: Theme.fontTitle
+                    font.bold: true
+                }
+                Text {
+                    Layout.fillWidth: true
+                    wrapMode: Text.WordWrap
+                    text: library.entry !== null ? "capture " + library.entry.capture_id + " · " + library.entry.status + " · "
+                                                   + Format.count(library.entry.samples) + " samples at " + Format.rate(library.entry.rate_hz)
+                                                   + (library.entry.orientation !== "" ? " · " + Format.orientation(library.entry.orientation) : "")
+                                                   + (library.entry.end_reason !== "" ? " · " + library.entry.end_reason : "") : ""
+                    color: Theme.muted
+                    font.pixelSize: Theme.fontSmall
+                }
+
+                Card {
+                    title: "Fitted model (Eq. 6), 95 % intervals"
+                    Layout.fillWidth: true
+                    Text {
+                        visible: library.entry !== null && library.entry.fit === null
+                        text: "Not fitted yet."
+                        color: Theme.muted
+                        font.pixelSize: Theme.fontBody
+                    }
+                    GridLayout {
+                        visible: library.entry !== null && library.entry.fit !== null
+                        Layout.fillWidth: true
+                        columns: 3
+                        columnSpacing: Theme.gap
+                        rowSpacing: 2
+                        Repeater {
+                            model: library.entry !== null && library.entry.fit !== null ? library.entry.fit.params : []
+                            delegate: Text {
+                                required property var modelData
+                                Layout.fillWidth: true
+                                text: Format.param(modelData.name, modelData.value, modelData.ci95).label
+                                color: Theme.muted
+                                font.pixelSize: Theme.fontBody
+                                Layout.row: index
+                                Layout.column: 0
+                                required property int index
+                            }
+                        }
+                        Repeater {
+                            model: library.entry !== null && library.entry.fit !== null ? library.entry.fit.params : []
+                            delegate: Text {
+                                required property var modelData
+                                required property int index
+                                objectName: "param." + modelData.name
+                                text: Format.param(modelData.name, modelData.value, modelData.ci95).value
+                                color: Theme.text
+                                font.pixelSize: Theme.fontBody
+                                Layout.row: index
+                                Layout.column: 1
+                                Layout.alignment: Qt.AlignRight
+                            }
+                        }
+                        Repeater {
+                            model: library.entry !== null && library.entry.fit !== null ? library.entry.fit.params : []
+                            delegate: Text {
+                                required property var modelData
+                                required property int index
+                                text: Format.param(modelData.name, modelData.value, modelData.ci95).interval
+                                color: Theme.muted
+                                font.pixelSize: Theme.fontSmall
+                                Layout.row: index
+                                Layout.column: 2
+                                Layout.alignment: Qt.AlignRight
+                            }
+                        }
+                    }
+                    Text {
+                        objectName: "fitSummary"
+                        visible: library.entry !== null && library.entry.fit !== null
+                        text: library.entry !== null && library.entry.fit !== null
+                              ? "RMS " + Format.torque(library.entry.fit.rmse_Nm) + ", fit " + library.entry.fit.fit_percent.toFixed(1) + " %" : ""
+                        color: Theme.muted
+                        font.pixelSize: Theme.fontSmall
+                    }
+                    ActionButton {
+                        objectName: "fitButton"
+                        text: library.entry !== null && library.entry.fit !== null ? "Fit again" : "Fit"
+                        enabled: !library.jobs.running && library.entry !== null
+                        onActivated: library.jobs.fit(library.entry.capture_id)
+                    }
+                }
+
+                Card {
+                    title: "What the model leaves out (discrepancy)"
+                    Layout.fillWidth: true
+                    readonly property var result: library.entry !== null ? library.entry.discrepancy : null
+                    id: findingsCard
+                    Text {
+                        objectName: "discrepancyNone"
+                        visible: findingsCard.result === null || findingsCard.result.findings.length === 0
+                        Layout.fillWidth: true
+                        wrapMode: Text.WordWrap
+                        text: findingsCard.result === null ? "Not looked for yet."
+                              : "No finding: nothing from the effect library cuts the held-out error by 20 %"
+                                + (findingsCard.result.tentative.length > 0 ? " (tentative: " + findingsCard.result.tentative.map(f => f.effect).join(", ") + ")." : ".")
+                        color: Theme.muted
+                        font.pixelSize: Theme.fontBody
+                    }
+                    Repeater {
+                        model: findingsCard.result !== null ? findingsCard.result.findings : []
+                        delegate: ColumnLayout {
+                            id: finding
+                            required property var modelData
+                            required property int index
+                            Layout.fillWidth: true
+                            Text {
+                                objectName: "finding." + finding.index
+                                text: finding.modelData.effect + "  (confidence " + finding.modelData.confidence.toFixed(2) + ")"
+                                color: Theme.warning
+                                font.pixelSize: Theme.fontBody
+                                font.bold: true
+                            }
+                            Text {
+                                Layout.fillWidth: true
+                                wrapMode: Text.WordWrap
+                                text: finding.modelData.explanation
+                                color: Theme.text
+                                font.pixelSize: Theme.fontSmall
+                            }
+                        }
+                    }
+                    ActionButton {
+                        objectName: "discrepancyButton"
+                        text: findingsCard.result !== null ? "Look again" : "Find discrepancies"
+                        enabled: !library.jobs.running && library.entry !== null
+                        onActivated: library.jobs.discrepancy(library.entry.capture_id)
+                    }
+                }
+                JobProgress {
+                    jobs: library.jobs
+                    visible: library.busyHere
+                    Layout.fillWidth: true
+                }
+            }
+        }
+    }
+}
