@@ -12,6 +12,7 @@
 
 #include "daemon_link.hpp"
 #include "hapticd_process.hpp"
+#include "library_reader.hpp"
 
 namespace knoblab::ui {
 namespace {
@@ -104,6 +105,42 @@ TEST(DaemonLink, ARefusedRequestComesBackAsAnErrorMessage) {
   EXPECT_EQ(level, "error");
   EXPECT_TRUE(text.startsWith("set_mode: ")) << text.toStdString();
   EXPECT_TRUE(link.connected()) << "a refused request is not a lost link";
+}
+
+TEST(DaemonLink, ACaptureIsStoredUnderItsMountingGripperAndNotes) {
+  ScratchDir dir;
+  const std::string socket = (dir / "h.sock").string();
+  const auto daemon = hapticd_at(socket);
+  DaemonLink link(at(socket));
+  ASSERT_TRUE(spin_until([&] { return link.connected(); })) << daemon->log();
+  qint64 capture = 0;
+  QObject::connect(&link, &DaemonLink::event, [&](const QString& name, const QVariantMap& data) {
+    if (name == "capture_finished") capture = data.value("capture_id").toLongLong();
+  });
+  bool refused = false;
+  QObject::connect(&link, &DaemonLink::replied,
+                   [&](int, const QString& cmd, bool ok, const QVariantMap&, const QString&) {
+                     if (cmd == "start_capture" && !ok) refused = true;
+                   });
+  // A mounting that is neither is refused by the protocol, before anything starts.
+  link.request("start_capture", {{"swept_sine", QVariantMap{{"a", 0}, {"b", 1.5}, {"c", 0.5}, {"d", 3}}},
+                                 {"seconds", 0.3}, {"knob", "dash-knob"}, {"mounting", "ceiling"}});
+  ASSERT_TRUE(spin_until([&] { return refused; }));
+  link.request("start_capture", {{"swept_sine", QVariantMap{{"a", 0}, {"b", 1.5}, {"c", 0.5}, {"d", 3}}},
+                                 {"seconds", 0.3},
+                                 {"knob", "dash-knob"},
+                                 {"mounting", "tripod"},
+                                 {"gripper", "silicone cup"},
+                                 {"notes", "car B, left stalk"}});
+  ASSERT_TRUE(spin_until([&] { return capture > 0; })) << daemon->log();
+  const auto entries = read_library(daemon->db());
+  ASSERT_EQ(entries.size(), 1u);
+  EXPECT_EQ(entries[0].capture_id, capture);
+  EXPECT_EQ(entries[0].knob, "dash-knob");
+  EXPECT_EQ(entries[0].mounting, "tripod");
+  const nlohmann::json j = entry_json(entries[0]);
+  EXPECT_EQ(j["gripper"], "silicone cup");
+  EXPECT_EQ(j["notes"], "car B, left stalk");
 }
 
 }  // namespace

@@ -160,6 +160,7 @@ constexpr std::array kModelGroups = {
 constexpr std::array kParamGroups = {GroupRule{GroupRule::Kind::at_least_one, kParamKeys}};
 
 // start_capture
+constexpr std::array<std::string_view, 2> kMountings = {"lab", "tripod"};
 constexpr std::array kSweptSineArgs = {
     number("a", kRequired, 0, 1000, "", "Eq. 8 sweep start (u at t = 0)"),
     number("b", kRequired, 0, 1000, "", "Eq. 8 sweep end (u at t = d)"),
@@ -186,6 +187,10 @@ constexpr std::array kCaptureArgs = {
     object("pid", kOptional, &kPid, "position controller gains (Eq. 4)"),
     number("seconds", kRequired, 0.01, 3600, "s", "capture length"),
     text("knob", kRequired, 64, "knob name the capture is stored under"),
+    choice("mounting", kOptional, kMountings,
+           "lab: the knob in the chuck; tripod: the camera on a tripod at the knob where it is (default lab)"),
+    text("gripper", kOptional, 128, "how the knob is gripped, e.g. \"ABS print, VHB tape\" (stored with the capture)"),
+    text("notes", kOptional, 512, "the experimenter's notes (stored with the capture)"),
 };
 constexpr std::array<std::string_view, 2> kStimulusKeys = {"swept_sine", "torque_sweep"};
 constexpr std::array kCaptureGroups = {GroupRule{GroupRule::Kind::exactly_one, kStimulusKeys}};

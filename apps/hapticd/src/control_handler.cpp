@@ -224,8 +224,13 @@ Reply ControlHandler::start_capture(const json& a) {
     cc.pid.Ki = get(pid, "Ki", cc.pid.Ki);
     cc.pid.Kd = get(pid, "Kd", cc.pid.Kd);
   }
+  CaptureLabels labels;
+  labels.knob = a.at("knob").get<std::string>();
+  labels.mounting = a.value("mounting", "lab");
+  if (a.contains("gripper")) labels.metadata["gripper"] = a.at("gripper");
+  if (a.contains("notes")) labels.metadata["notes"] = a.at("notes");
   std::string why;
-  if (!daemon_.start_capture(cc, a.at("seconds").get<double>(), a.at("knob").get<std::string>(), why))
+  if (!daemon_.start_capture(cc, a.at("seconds").get<double>(), labels, why))
     return Reply::failure(ErrorCode::busy, why);
   return Reply::success({{"samples", static_cast<std::int64_t>(
                                          std::llround(a.at("seconds").get<double>() * daemon_.config().core.rate_hz))}});

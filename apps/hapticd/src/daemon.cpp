@@ -123,7 +123,7 @@ bool Daemon::post(const CoreCommand& c) {
   return false;
 }
 
-bool Daemon::start_capture(const capture::CaptureConfig& cc, double seconds, const std::string& knob,
+bool Daemon::start_capture(const capture::CaptureConfig& cc, double seconds, const CaptureLabels& labels,
                            std::string& why) {
   const CoreState s = core_->state();
   if (s.faults != 0) {
@@ -135,7 +135,9 @@ bool Daemon::start_capture(const capture::CaptureConfig& cc, double seconds, con
     return false;
   }
   store::NewCapture info;
-  info.knob = knob.empty() ? cfg_.knob : knob;
+  info.knob = labels.knob.empty() ? cfg_.knob : labels.knob;
+  info.mode = labels.mounting;
+  if (!labels.metadata.empty()) info.metadata = labels.metadata.dump();
   info.rate_hz = cfg_.core.rate_hz;
   info.calibration = sensor_calibration().to_json();
   const bool torque = cc.kind == capture::CaptureConfig::Stimulus::Torque;

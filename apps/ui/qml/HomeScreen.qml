@@ -34,6 +34,12 @@ Item {
             columnSpacing: Theme.gap * 2
             rowSpacing: Theme.gap * 2
             BigButton {
+                objectName: "captureButton"
+                label: "Capture a knob"
+                detail: "mount, check the sensors, capture, fit and find what is missing"
+                onActivated: home.open("capture")
+            }
+            BigButton {
                 objectName: "libraryButton"
                 label: "Knob library"
                 detail: "captured knobs, their fits and what the model leaves out"

@@ -129,123 +129,15 @@ Item {
                     font.pixelSize: Theme.fontSmall
                 }
 
-                Card {
-                    title: "Fitted model (Eq. 6), 95 % intervals"
+                FitCard {
+                    entry: library.entry
+                    jobs: library.jobs
                     Layout.fillWidth: true
-                    Text {
-                        visible: library.entry !== null && library.entry.fit === null
-                        text: "Not fitted yet."
-                        color: Theme.muted
-                        font.pixelSize: Theme.fontBody
-                    }
-                    GridLayout {
-                        visible: library.entry !== null && library.entry.fit !== null
-                        Layout.fillWidth: true
-                        columns: 3
-                        columnSpacing: Theme.gap
-                        rowSpacing: 2
-                        Repeater {
-                            model: library.entry !== null && library.entry.fit !== null ? library.entry.fit.params : []
-                            delegate: Text {
-                                required property var modelData
-                                Layout.fillWidth: true
-                                text: Format.param(modelData.name, modelData.value, modelData.ci95).label
-                                color: Theme.muted
-                                font.pixelSize: Theme.fontBody
-                                Layout.row: index
-                                Layout.column: 0
-                                required property int index
-                            }
-                        }
-                        Repeater {
-                            model: library.entry !== null && library.entry.fit !== null ? library.entry.fit.params : []
-                            delegate: Text {
-                                required property var modelData
-                                required property int index
-                                objectName: "param." + modelData.name
-                                text: Format.param(modelData.name, modelData.value, modelData.ci95).value
-                                color: Theme.text
-                                font.pixelSize: Theme.fontBody
-                                Layout.row: index
-                                Layout.column: 1
-                                Layout.alignment: Qt.AlignRight
-                            }
-                        }
-                        Repeater {
-                            model: library.entry !== null && library.entry.fit !== null ? library.entry.fit.params : []
-                            delegate: Text {
-                                required property var modelData
-                                required property int index
-                                text: Format.param(modelData.name, modelData.value, modelData.ci95).interval
-                                color: Theme.muted
-                                font.pixelSize: Theme.fontSmall
-                                Layout.row: index
-                                Layout.column: 2
-                                Layout.alignment: Qt.AlignRight
-                            }
-                        }
-                    }
-                    Text {
-                        objectName: "fitSummary"
-                        visible: library.entry !== null && library.entry.fit !== null
-                        text: library.entry !== null && library.entry.fit !== null
-                              ? "RMS " + Format.torque(library.entry.fit.rmse_Nm) + ", fit " + library.entry.fit.fit_percent.toFixed(1) + " %" : ""
-                        color: Theme.muted
-                        font.pixelSize: Theme.fontSmall
-                    }
-                    ActionButton {
-                        objectName: "fitButton"
-                        text: library.entry !== null && library.entry.fit !== null ? "Fit again" : "Fit"
-                        enabled: !library.jobs.running && library.entry !== null
-                        onActivated: library.jobs.fit(library.entry.capture_id)
-                    }
                 }
-
-                Card {
-                    title: "What the model leaves out (discrepancy)"
+                FindingsCard {
+                    entry: library.entry
+                    jobs: library.jobs
                     Layout.fillWidth: true
-                    readonly property var result: library.entry !== null ? library.entry.discrepancy : null
-                    id: findingsCard
-                    Text {
-                        objectName: "discrepancyNone"
-                        visible: findingsCard.result === null || findingsCard.result.findings.length === 0
-                        Layout.fillWidth: true
-                        wrapMode: Text.WordWrap
-                        text: findingsCard.result === null ? "Not looked for yet."
-                              : "No finding: nothing from the effect library cuts the held-out error by 20 %"
-                                + (findingsCard.result.tentative.length > 0 ? " (tentative: " + findingsCard.result.tentative.map(f => f.effect).join(", ") + ")." : ".")
-                        color: Theme.muted
-                        font.pixelSize: Theme.fontBody
-                    }
-                    Repeater {
-                        model: findingsCard.result !== null ? findingsCard.result.findings : []
-                        delegate: ColumnLayout {
-                            id: finding
-                            required property var modelData
-                            required property int index
-                            Layout.fillWidth: true
-                            Text {
-                                objectName: "finding." + finding.index
-                                text: finding.modelData.effect + "  (confidence " + finding.modelData.confidence.toFixed(2) + ")"
-                                color: Theme.warning
-                                font.pixelSize: Theme.fontBody
-                                font.bold: true
-                            }
-                            Text {
-                                Layout.fillWidth: true
-                                wrapMode: Text.WordWrap
-                                text: finding.modelData.explanation
-                                color: Theme.text
-                                font.pixelSize: Theme.fontSmall
-                            }
-                        }
-                    }
-                    ActionButton {
-                        objectName: "discrepancyButton"
-                        text: findingsCard.result !== null ? "Look again" : "Find discrepancies"
-                        enabled: !library.jobs.running && library.entry !== null
-                        onActivated: library.jobs.discrepancy(library.entry.capture_id)
-                    }
                 }
                 JobProgress {
                     jobs: library.jobs

@@ -9,6 +9,7 @@ ApplicationWindow {
     required property DaemonLink link
     required property KnobLibrary knobs
     required property JobRunner jobs
+    required property TelemetryFeed feed
     // The screen shown first (knoblab-ui --screen): home, or one above it.
     required property string startScreen
 
@@ -20,7 +21,8 @@ ApplicationWindow {
 
     readonly property var screens: ({
             system: systemScreen,
-            library: libraryScreen
+            library: libraryScreen,
+            capture: captureScreen
         })
 
     function open(name) {
@@ -48,6 +50,19 @@ ApplicationWindow {
         id: systemScreen
         SystemScreen {
             link: window.link
+        }
+    }
+    Component {
+        id: captureScreen
+        CaptureScreen {
+            link: window.link
+            knobs: window.knobs
+            jobs: window.jobs
+            feed: window.feed
+            onOpenLibrary: captureId => {
+                stack.pop(null);
+                stack.push(libraryScreen, { captureId: captureId });
+            }
         }
     }
     Component {

@@ -16,6 +16,11 @@ DaemonLink::DaemonLink(LinkWorker::Options options, QObject* parent)
     supervising_ = s;
     emit supervisingChanged();
   });
+  connect(worker_, &LinkWorker::telemetryNamed, this, [this](const QString& name) {
+    if (name == telemetry_name_) return;
+    telemetry_name_ = name;
+    emit telemetryNameChanged();
+  });
   connect(worker_, &LinkWorker::stateArrived, this, &DaemonLink::on_state);
   connect(worker_, &LinkWorker::eventArrived, this, &DaemonLink::on_event);
   connect(worker_, &LinkWorker::replied, this,

@@ -31,6 +31,8 @@ class DaemonLink : public QObject {
   Q_PROPERTY(QStringList faults READ faults NOTIFY stateChanged)
   Q_PROPERTY(bool estop READ estop NOTIFY stateChanged)
   Q_PROPERTY(bool amplifierFault READ amplifierFault NOTIFY stateChanged)
+  // The telemetry ring hapticd writes ("" when none, or not connected).
+  Q_PROPERTY(QString telemetryName READ telemetryName NOTIFY telemetryNameChanged)
   // The loop's rate as measured from its cycle counter (0 until known).
   Q_PROPERTY(double measuredRateHz READ measuredRateHz NOTIFY stateChanged)
 
@@ -49,6 +51,7 @@ class DaemonLink : public QObject {
   bool estop() const { return faults_.estop; }
   bool amplifierFault() const { return faults_.amplifier; }
   double measuredRateHz() const { return rate_hz_; }
+  QString telemetryName() const { return telemetry_name_; }
 
   // A request to hapticd; its outcome comes back as replied(token, …) and,
   // when it failed, as a message. Returns the token.
@@ -58,6 +61,7 @@ class DaemonLink : public QObject {
  signals:
   void connectedChanged();
   void supervisingChanged();
+  void telemetryNameChanged();
   void stateChanged();
   void statsChanged();
   void event(const QString& name, const QVariantMap& data);
@@ -77,7 +81,7 @@ class DaemonLink : public QObject {
   LinkWorker* worker_ = nullptr;
   bool connected_ = false, supervising_ = false;
   bool ever_connected_ = false;  // a later connection is news ("reconnected")
-  QString problem_;
+  QString problem_, telemetry_name_;
   QVariantMap state_, stats_;
   FaultReading faults_;
   LoopRateMeter meter_;

@@ -34,6 +34,9 @@ std::vector<LibraryEntry> read_library(const std::filesystem::path& db) {
       e.stimulus = c.stimulus;
       e.orientation = c.orientation;
       e.end_reason = c.end_reason.value_or("");
+      e.mounting = c.mode;
+      const nlohmann::json meta = parsed(c.metadata);
+      if (meta.is_object()) e.metadata = meta;
       e.rate_hz = c.rate_hz;
       e.samples = c.sample_count;
       // Both lists are by id: the last one of this capture is the latest.
@@ -53,7 +56,9 @@ std::vector<LibraryEntry> read_library(const std::filesystem::path& db) {
 nlohmann::json entry_json(const LibraryEntry& e) {
   nlohmann::json j = {{"capture_id", e.capture_id}, {"knob", e.knob},         {"status", e.status},
                       {"started_at", e.started_at}, {"stimulus", e.stimulus}, {"orientation", e.orientation},
-                      {"end_reason", e.end_reason}, {"rate_hz", e.rate_hz},   {"samples", e.samples}};
+                      {"end_reason", e.end_reason}, {"rate_hz", e.rate_hz},   {"samples", e.samples},
+                      {"mounting", e.mounting},     {"gripper", e.metadata.value("gripper", "")},
+                      {"notes", e.metadata.value("notes", "")}};
   j["fit"] = nullptr;
   if (e.fit_id && e.fit.is_object()) {
     nlohmann::json params = nlohmann::json::array();

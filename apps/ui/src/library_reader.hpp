@@ -17,6 +17,8 @@ namespace knoblab::ui {
 struct LibraryEntry {
   std::int64_t capture_id = 0;
   std::string knob, status, started_at, stimulus, orientation, end_reason;
+  std::string mounting;                                  // 'lab' | 'tripod'
+  nlohmann::json metadata = nlohmann::json::object();    // gripper, notes, … as stored
   double rate_hz = 0.0;
   std::int64_t samples = 0;
   std::optional<std::int64_t> fit_id;

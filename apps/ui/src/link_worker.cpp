@@ -63,11 +63,14 @@ bool LinkWorker::connect_now() {
     } else {
       c->hello({{control::kProtocolVersion}, "knoblab-ui", std::nullopt});
     }
-    c->call("subscribe", {{"events", {"stats", "fault_latched", "capture_finished", "calibration_finished",
-                                      "watchdog_expired"}}});
+    const nlohmann::json sub = c->call(
+        "subscribe", {{"events", {"stats", "fault_latched", "capture_finished", "calibration_finished", "watchdog_expired"}},
+                      {"telemetry", true}});
+    const std::string shm = sub.value("telemetry_shm", "");
     client_ = std::move(c);
     last_failure_.clear();
     emit supervisingChanged(supervising);
+    emit telemetryNamed(QString::fromStdString(shm));
     emit connectedChanged(true, {});
     return true;
   } catch (const std::exception& e) {

@@ -42,6 +42,8 @@ class LinkWorker : public QObject {
  signals:
   void connectedChanged(bool connected, const QString& why);
   void supervisingChanged(bool supervising);
+  // The telemetry ring's shared-memory name ("" when hapticd keeps none).
+  void telemetryNamed(const QString& name);
   // `seconds`: when the reply came, on this worker's steady clock (the UI
   // thread may handle two replies in one go; the loop rate needs their timing).
   void stateArrived(const QVariantMap& state, double seconds);

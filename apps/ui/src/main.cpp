@@ -16,6 +16,7 @@
 #include "daemon_link.hpp"
 #include "job_runner.hpp"
 #include "knob_library.hpp"
+#include "telemetry_feed.hpp"
 #include "knoblab/version.hpp"
 #include "screen_check.hpp"
 #include "ui_options.hpp"
@@ -101,11 +102,15 @@ int main(int argc, char** argv) {
   knoblab::ui::DaemonLink link(lo);
   knoblab::ui::KnobLibrary library(QString::fromStdString(o.db));
   knoblab::ui::JobRunner jobs(QString::fromStdString(o.knoblab), QString::fromStdString(o.db));
+  knoblab::ui::TelemetryFeed feed;
+  QObject::connect(&link, &knoblab::ui::DaemonLink::telemetryNameChanged, &feed,
+                   [&] { feed.setRing(link.telemetryName()); });
 
   QQmlApplicationEngine engine;
   engine.setInitialProperties({{QStringLiteral("link"), QVariant::fromValue(&link)},
                                {QStringLiteral("knobs"), QVariant::fromValue(&library)},
                                {QStringLiteral("jobs"), QVariant::fromValue(&jobs)},
+                               {QStringLiteral("feed"), QVariant::fromValue(&feed)},
                                {QStringLiteral("startScreen"), QString::fromStdString(o.screen)},
                                {QStringLiteral("width"), o.width},
                                {QStringLiteral("height"), o.height}});

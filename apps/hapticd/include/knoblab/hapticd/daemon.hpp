@@ -57,6 +57,15 @@ struct DaemonConfig {
   nlohmann::json accepted_calibrations = nlohmann::json::object();
 };
 
+// What a capture is stored under besides its samples: the knob, how the
+// camera was mounted (the store's mode) and the experimenter's metadata
+// (gripper, notes).
+struct CaptureLabels {
+  std::string knob;              // empty: the daemon's --knob
+  std::string mounting = "lab";  // 'lab' | 'tripod'
+  nlohmann::json metadata = nlohmann::json::object();
+};
+
 class Daemon {
  public:
   // The DAQ and lines are the HAL backends (sim or real), owned here.
@@ -74,8 +83,11 @@ class Daemon {
   // --- non-realtime API (control handler, tests) ---
   HapticCore& core() { return *core_; }
   // Starts a swept-sine capture; returns false with a reason when it can't.
-  bool start_capture(const capture::CaptureConfig& cfg, double seconds, const std::string& knob,
+  bool start_capture(const capture::CaptureConfig& cfg, double seconds, const CaptureLabels& labels,
                      std::string& why);
+  bool start_capture(const capture::CaptureConfig& cfg, double seconds, const std::string& knob, std::string& why) {
+    return start_capture(cfg, seconds, CaptureLabels{knob, "lab", nlohmann::json::object()}, why);
+  }
   bool post(const CoreCommand& c);
   // Starts a calibration run (kinds: see calibration_controller.hpp). The
   // loop's rate, the sensor calibration in use and the torque-per-volt come

@@ -1,0 +1,223 @@
+// The capture wizard driven by touch, end to end, against hapticd on the sim
+// backend: taps on the real screens (offscreen), a sensor check, a capture
+// with live traces, then the fit and the discrepancy run the wizard starts.
+// What it shows must be what the CLI computes for the same capture, and all
+// of it must be in the library.
+#include <gtest/gtest.h>
+
+#include <QGuiApplication>
+#include <QElapsedTimer>
+#include <QJSEngine>
+#include <QQmlApplicationEngine>
+#include <QQuickItem>
+#include <QQuickWindow>
+#include <QTest>
+
+#include <filesystem>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include "daemon_link.hpp"
+#include "hapticd_process.hpp"
+#include "job_runner.hpp"
+#include "knob_library.hpp"
+#include "process.hpp"
+#include "screen_check.hpp"
+#include "telemetry_feed.hpp"
+
+namespace knoblab::ui {
+namespace {
+
+bool spin_until(const std::function<bool()>& done, int ms = 60000) {
+  QElapsedTimer t;
+  t.start();
+  while (!done()) {
+    if (t.elapsed() > ms) return false;
+    QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
+  }
+  return true;
+}
+
+// The visible item with this objectName, searched through the visual tree.
+QQuickItem* find(QQuickItem* root, const QString& name) {
+  if (!root || !root->isVisible()) return nullptr;
+  if (root->objectName() == name) return root;
+  for (QQuickItem* child : root->childItems())
+    if (QQuickItem* hit = find(child, name)) return hit;
+  return nullptr;
+}
+
+class Screen {
+ public:
+  explicit Screen(QQuickWindow* w) : window_(w) {}
+  QQuickItem* item(const QString& name) const { return find(window_->contentItem(), name); }
+  bool shows(const QString& name) const { return item(name) != nullptr; }
+  QString text(const QString& name) const {
+    const QQuickItem* i = item(name);
+    return i ? i->property("text").toString() : QString();
+  }
+  // A finger on the item's centre (TapHandlers take a mouse click as a tap),
+  // once it has stopped moving (a screen slides in), then the screen let
+  // settle as a person would look before the next tap.
+  bool tap(const QString& name) const {
+    QQuickItem* i = item(name);
+    if (!i || !i->isEnabled()) return false;
+    QPointF c = i->mapToScene(QPointF(i->width() / 2, i->height() / 2));
+    for (QPointF before; before != c;) {
+      before = c;
+      wait(100);
+      if (!(i = item(name))) return false;
+      c = i->mapToScene(QPointF(i->width() / 2, i->height() / 2));
+    }
+    QTest::mouseClick(window_, Qt::LeftButton, Qt::NoModifier, c.toPoint());
+    wait(300);
+    return true;
+  }
+  static void wait(int ms) {
+    QElapsedTimer t;
+    t.start();
+    while (t.elapsed() < ms) QCoreApplication::processEvents(QEventLoop::AllEvents, 10);
+  }
+  // The screen as it is now, kept in build/ui-screens; no text on it cut.
+  void shoot(const std::string& name) const {
+    std::filesystem::create_directories(KNOBLAB_UI_SCREENS_DIR);
+    const QImage image = window_->grabWindow();
+    EXPECT_TRUE(drawn(image)) << name;
+    image.save(QString::fromStdString(std::string(KNOBLAB_UI_SCREENS_DIR) + "/" + name + ".png"));
+    const QStringList clipped = clipped_texts(window_->contentItem());
+    EXPECT_TRUE(clipped.isEmpty()) << name << ": " << clipped.join("; ").toStdString();
+  }
+  void type(const QString& name, const QString& text) const {
+    if (QQuickItem* i = item(name + ".input")) i->setProperty("text", text);
+  }
+
+ private:
+  QQuickWindow* window_;
+};
+
+TEST(CaptureWizard, DrivenByTouchItCapturesFitsFindsAndStoresWhatTheCliWould) {
+  const std::string ring = "/knoblab-ui-wizard-" + std::to_string(::getpid());
+  // At the rate the camera's PID is tuned for (the tests' gentle 1 kHz makes
+  // the simulated capture chatter); no overrun fault on this non-realtime host.
+  test::Hapticd daemon(ring, {"--rate", "5000"});
+  ASSERT_TRUE(daemon.ready()) << daemon.log();
+
+  LinkWorker::Options lo;
+  lo.socket = QString::fromStdString(daemon.socket());
+  DaemonLink link(lo);
+  KnobLibrary knobs(QString::fromStdString(daemon.db()));
+  JobRunner jobs(KNOBLAB_CLI_PATH, QString::fromStdString(daemon.db()));
+  TelemetryFeed feed;
+  QObject::connect(&link, &DaemonLink::telemetryNameChanged, &feed, [&] { feed.setRing(link.telemetryName()); });
+  QStringList messages;
+  QObject::connect(&link, &DaemonLink::message, [&](const QString& t, const QString&) { messages << t; });
+
+  QQmlApplicationEngine engine;
+  engine.setInitialProperties({{"link", QVariant::fromValue(&link)},
+                               {"knobs", QVariant::fromValue(&knobs)},
+                               {"jobs", QVariant::fromValue(&jobs)},
+                               {"feed", QVariant::fromValue(&feed)},
+                               {"startScreen", QString("home")},
+                               {"width", 1024},
+                               {"height", 600}});
+  engine.loadFromModule("Knoblab.Ui", "Main");
+  ASSERT_FALSE(engine.rootObjects().isEmpty());
+  auto* window = qobject_cast<QQuickWindow*>(engine.rootObjects().first());
+  ASSERT_NE(window, nullptr);
+  window->show();
+  Screen screen(window);
+  ASSERT_TRUE(spin_until([&] { return link.connected() && !link.telemetryName().isEmpty(); })) << daemon.log();
+
+  // Home → the wizard; mounted in the lab.
+  ASSERT_TRUE(spin_until([&] { return screen.tap("captureButton"); }));
+  ASSERT_TRUE(spin_until([&] { return screen.tap("mountTripod"); }));
+  screen.shoot("capture-1-mounting-1024x600");
+  ASSERT_TRUE(screen.tap("mountLab"));
+  ASSERT_TRUE(screen.tap("next"));
+  // The knob and its gripper.
+  ASSERT_TRUE(spin_until([&] { return screen.shows("knobName.input"); }));
+  screen.type("knobName", "wizard-knob");
+  screen.type("gripper", "ABS print, VHB tape");
+  screen.shoot("capture-2-knob-1024x600");
+  ASSERT_TRUE(spin_until([&] { return screen.tap("next"); }));
+  // The sensor check (Table 4) runs and reports.
+  ASSERT_TRUE(spin_until([&] { return screen.tap("verifySensors"); }));
+  ASSERT_TRUE(spin_until([&] { return screen.shows("table4.theta"); })) << messages.join(" | ").toStdString();
+  EXPECT_TRUE(screen.text("table4.theta").startsWith("angle: commanded − measured"))
+      << screen.text("table4.theta").toStdString();
+  ASSERT_TRUE(spin_until([&] { return link.mode() == "idle"; }));
+  screen.shoot("capture-3-sensors-1024x600");
+  ASSERT_TRUE(screen.tap("next"));
+  // The capture, with the angle and torque live.
+  ASSERT_TRUE(spin_until([&] { return screen.tap("startCapture"); }));
+  ASSERT_TRUE(spin_until([&] { return screen.item("angleTrace") && screen.item("angleTrace")->property("drawn").toInt() > 100; }))
+      << "no live angle trace";
+  EXPECT_GT(screen.item("torqueTrace")->property("drawn").toInt(), 100);
+  Screen::wait(1500);  // a few seconds of trace
+  screen.shoot("capture-4-capture-1024x600");
+  // Then the fit and the discrepancy run, by themselves.
+  ASSERT_TRUE(spin_until([&] { return screen.text("resultState").startsWith("Saved in the library"); }, 180000))
+      << screen.text("resultState").toStdString() << " / " << messages.join(" | ").toStdString();
+  // The library re-read after each job: the fit, then the findings (or why there are none).
+  ASSERT_TRUE(spin_until([&] {
+    return screen.shows("param.A_pos") &&
+           (screen.shows("finding.0") || screen.text("discrepancyNone").startsWith("No finding"));
+  }));
+  Screen::wait(4500);  // the message bar's news fades
+  screen.shoot("capture-5-results-1024x600");
+  const int capture = static_cast<int>(screen.text("resultState").split(' ')[5].toInt());
+  ASSERT_GT(capture, 0) << screen.text("resultState").toStdString();
+
+  // The CLI on the same capture: the same numbers, shown the way the screen shows them.
+  test::ScratchDir dir;
+  const auto fit = test::run_knoblab({"fit", "--capture", std::to_string(capture), "--db", daemon.db(), "--json",
+                                      (dir / "fit.json").string()});
+  ASSERT_EQ(fit.exit_code, 0) << fit.err;
+  const auto disc = test::run_knoblab({"discrepancy", "--capture", std::to_string(capture), "--db", daemon.db(),
+                                       "--json", (dir / "d.json").string()});
+  ASSERT_EQ(disc.exit_code, 0) << disc.err;
+  const nlohmann::json cli_fit = nlohmann::json::parse(test::read_file(dir / "fit.json"));
+  const nlohmann::json cli_disc = nlohmann::json::parse(test::read_file(dir / "d.json"));
+  QJSEngine js;
+  const QJSValue format = js.importModule(":/qt/qml/Knoblab/Ui/format.mjs");
+  ASSERT_FALSE(format.isError()) << format.toString().toStdString();
+  for (const auto& [name, value] : cli_fit["params"].items()) {
+    const QJSValue shown = format.property("param").call(
+        {QJSValue(QString::fromStdString(name)), QJSValue(value.get<double>()), QJSValue::UndefinedValue});
+    EXPECT_EQ(screen.text(QString::fromStdString("param." + name)), shown.property("value").toString()) << name;
+  }
+  const auto& findings = cli_disc["findings"];
+  for (std::size_t k = 0; k < findings.size(); ++k)
+    EXPECT_TRUE(screen.text(QString("finding.%1").arg(k)).startsWith(QString::fromStdString(findings[k]["effect"])))
+        << k << ": the screen says '" << screen.text(QString("finding.%1").arg(k)).toStdString() << "', the CLI "
+        << findings[k]["effect"];
+  EXPECT_EQ(screen.shows(QString("finding.%1").arg(findings.size())), false);
+  if (findings.empty()) {
+    EXPECT_TRUE(screen.shows("discrepancyNone"));
+  }
+
+  // In the library: the capture under the knob's name, lab-mounted, its gripper, its results.
+  knobs.refresh();
+  ASSERT_TRUE(spin_until([&] { return !knobs.loading(); }));
+  const QVariantMap e = knobs.entry(capture);
+  EXPECT_EQ(e.value("knob").toString(), "wizard-knob");
+  EXPECT_EQ(e.value("mounting").toString(), "lab");
+  EXPECT_EQ(e.value("gripper").toString(), "ABS print, VHB tape");
+  EXPECT_EQ(e.value("status").toString(), "complete");
+  EXPECT_FALSE(e.value("fit").isNull());
+  EXPECT_FALSE(e.value("discrepancy").isNull());
+  ::shm_unlink(ring.c_str());
+}
+
+}  // namespace
+}  // namespace knoblab::ui
+
+int main(int argc, char** argv) {
+  // Offscreen, the software renderer: no display needed, the same pixels anywhere.
+  qputenv("QT_QPA_PLATFORM", "offscreen");
+  qputenv("QT_QUICK_BACKEND", "software");
+  QGuiApplication app(argc, argv);
+  ::testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
