@@ -9,6 +9,10 @@ Checks, in order:
 
   ready         "appliance ready" appears on the console (boot-to-ready time)
   get_state     `knoblab ctl get_state` answers with the loop running, no fault
+  kiosk         knoblab-ui runs on the emulated display: its status file shows
+                the home screen with the loop running, and QEMU's screendump
+                of the display (kept as kiosk.png) is that screen, its status
+                strip drawn; killed, systemd puts it back up
   loop_thread   hapticd's loop thread (knoblab-rt) is SCHED_FIFO, pinned to CPU 1
   daq_modules   with daq.cfg's modules in the image: Comedi, IIO and counter load
   cyclictest    30 s on the isolated CPU; its figures are reported, never judged
@@ -35,6 +39,8 @@ prints one line per check and "N passed, N failed".
 """
 import argparse
 import json
+import struct
+import zlib
 import os
 import re
 import shutil
@@ -150,8 +156,9 @@ class Boot:
 
     def __init__(self, args, tmp, store, log_name):
         self.con_path = os.path.join(tmp, f"{log_name}.sock")
+        self.qmp_path = os.path.join(tmp, f"{log_name}.qmp")
         env = dict(os.environ, KNOBLAB_QEMU_CONSOLE=f"unix:{self.con_path}",
-                   KNOBLAB_QEMU_STORE=store)
+                   KNOBLAB_QEMU_STORE=store, KNOBLAB_QEMU_QMP=f"unix:{self.qmp_path}")
         self.t0 = time.monotonic()
         self.qemu = subprocess.Popen([args.qemu], env=env, stdin=subprocess.DEVNULL)
         while not os.path.exists(self.con_path):
@@ -173,6 +180,26 @@ class Boot:
             self.con.run(definition)
         return seconds
 
+    def screendump(self, ppm_path):
+        """The emulated display as a PPM file, through QEMU's QMP socket."""
+        with socket.socket(socket.AF_UNIX, socket.SOCK_STREAM) as q:
+            q.connect(self.qmp_path)
+            reader = q.makefile("r")
+
+            def reply():
+                while True:  # events may come before the reply
+                    msg = json.loads(reader.readline())
+                    if "return" in msg or "error" in msg:
+                        return msg
+
+            json.loads(reader.readline())  # the greeting
+            for command in ({"execute": "qmp_capabilities"},
+                            {"execute": "screendump", "arguments": {"filename": ppm_path}}):
+                q.sendall(json.dumps(command).encode() + b"\n")
+                msg = reply()
+                if "error" in msg:
+                    raise RuntimeError(f"QMP {command['execute']}: {msg['error']}")
+
     def kill(self):
         if self.qemu.poll() is None:
             self.qemu.kill()
@@ -186,7 +213,7 @@ def main():
     ap.add_argument("--ready-timeout", type=float, default=600)
     args = ap.parse_args()
 
-    report = {"boot_to_ready_s": None, "capture_ok": False, "fit_ok": False,
+    report = {"boot_to_ready_s": None, "kiosk_ok": False, "capture_ok": False, "fit_ok": False,
               "discrepancy_ok": False, "estop_ok": False, "amp_comms_ok": False,
               "power_cut_ok": False, "sched_fifo_ok": False, "cyclictest": None,
               "checks": [], "figures": {}}
@@ -269,6 +296,7 @@ def first_boot(boot, args, report, check):
         except Exception as e:
             check(name, False, f"{type(e).__name__}: {e}")
 
+    guarded("kiosk", check_kiosk, boot, args, report, check)
     guarded("loop_thread", check_loop_thread, con, report, check)
     guarded("daq_modules", check_daq_modules, con, report, check)
     guarded("cyclictest", run_cyclictest, con, report, check)
@@ -299,6 +327,84 @@ def second_boot(boot, args, report, check, cut):
               f"QEMU exited with {boot.qemu.returncode} {figures['poweroff_s']} s after poweroff")
     except subprocess.TimeoutExpired:
         check("poweroff", False, "QEMU still running 180 s after poweroff")
+
+
+def read_ppm(path):
+    """(width, height, RGB bytes) of a binary PPM (P6, 8 bits)."""
+    with open(path, "rb") as f:
+        data = f.read()
+    fields, pos = [], 0
+    while len(fields) < 4:  # magic, width, height, maxval; comments skipped
+        while data[pos:pos + 1].isspace():
+            pos += 1
+        if data[pos:pos + 1] == b"#":
+            pos = data.index(b"\n", pos) + 1
+            continue
+        end = pos
+        while not data[end:end + 1].isspace():
+            end += 1
+        fields.append(data[pos:end])
+        pos = end
+    if fields[0] != b"P6" or int(fields[3]) != 255:
+        raise ValueError(f"{path}: not an 8-bit P6 PPM")
+    w, h = int(fields[1]), int(fields[2])
+    return w, h, data[pos + 1:pos + 1 + 3 * w * h]
+
+
+def write_png(path, w, h, rgb):
+    """RGB bytes as a PNG file (zlib only: no imaging library on the host)."""
+    def chunk(kind, body):
+        return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body))
+    rows = b"".join(b"\x00" + rgb[3 * w * y:3 * w * (y + 1)] for y in range(h))
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0)) +
+                chunk(b"IDAT", zlib.compress(rows, 6)) + chunk(b"IEND", b""))
+
+
+# The status strip's background, Theme.surface in apps/ui/qml/Theme.qml.
+STRIP_RGB = (0x20, 0x25, 0x2b)
+
+
+def check_kiosk(boot, args, report, check):
+    """The kiosk's home screen with the loop running: what it says it shows
+    (its status file), and the display's pixels (a screendump) agreeing."""
+    con = boot.con
+    status, deadline = {}, time.monotonic() + 180
+    while time.monotonic() < deadline:
+        rc, out = con.run("cat /run/knoblab-ui/status.json 2>/dev/null")
+        status = (parse_json(out) or {}).get("texts", {}) if rc == 0 else {}
+        if re.match(r"loop \d", status.get("loop", "")) and status.get("connection") == "● hapticd":
+            break
+        time.sleep(2)
+    report["kiosk_status"] = status
+    ppm = os.path.join(args.image_dir, "kiosk.ppm")
+    boot.screendump(ppm)
+    w, h, rgb = read_ppm(ppm)
+    png = os.path.join(args.image_dir, "kiosk.png")
+    write_png(png, w, h, rgb)
+    os.remove(ppm)
+    pixels = [rgb[i:i + 3] for i in range(0, len(rgb), 3)]
+    most = max(set(pixels[::97]), key=pixels[::97].count)
+    drawn = sum(p != most for p in pixels[::7]) / len(pixels[::7])
+    # The strip: the top 30 rows, their background the theme's surface.
+    top = pixels[:30 * w]
+    strip = sum(tuple(p) == STRIP_RGB for p in top) / len(top)
+    loop = status.get("loop", "")
+    check("kiosk", re.match(r"loop \d", loop) and status.get("daemonStatus", "").startswith("hapticd is")
+          and drawn > 0.02 and strip > 0.5,
+          f"{w}x{h} screendump in {png}: {100 * drawn:.0f} % drawn, status strip {100 * strip:.0f} % of the top rows; "
+          f"the kiosk says {loop!r}, {status.get('connection')!r}, {status.get('daemonStatus')!r}", "kiosk_ok")
+    # A crash: systemd puts the screen up again.
+    rc, before = con.run("systemctl show -P MainPID knoblab-ui")
+    con.run("systemctl kill -s SIGSEGV knoblab-ui")
+    after, deadline = before, time.monotonic() + 120
+    while time.monotonic() < deadline:
+        time.sleep(3)
+        rc, after = con.run("systemctl is-active knoblab-ui; systemctl show -P MainPID knoblab-ui")
+        if after.split()[:1] == ["active"] and after.split()[1:] != before.split():
+            break
+    check("kiosk_restart", after.split()[:1] == ["active"] and after.split()[1:] != before.split(),
+          f"MainPID {before.strip()} killed; now {' '.join(after.split())}")
 
 
 def check_loop_thread(con, report, check):

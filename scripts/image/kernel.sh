@@ -2,7 +2,7 @@
 # kernel.sh: the CI image's kernel, built from Debian 13's linux-source-6.12
 # (PREEMPT_RT is mainline there) on `make tinyconfig` + kernel-config/ci-base.cfg
 # (+ ci-modules.cfg) + the fragments the Yocto image uses (rt, loop-core,
-# sim-io, daq), built in a trixie chroot so the toolchain matches the rootfs.
+# sim-io, display, daq), built in a trixie chroot so the toolchain matches the rootfs.
 # Prints the bzImage's path on stdout; everything else goes to stderr.
 #
 # Cached under $KNOBLAB_CACHE/kernel/<key>/, the key a hash of the kernel
@@ -27,7 +27,7 @@ case "$base" in
 esac
 daq=${KNOBLAB_KERNEL_DAQ:-1}
 [ "$daq" = 1 ] && [ "$base" = tiny ] && fragments+=("$kc/ci-modules.cfg")
-fragments+=("$kc/rt.cfg" "$kc/loop-core.cfg" "$kc/sim-io.cfg")
+fragments+=("$kc/rt.cfg" "$kc/loop-core.cfg" "$kc/sim-io.cfg" "$kc/display.cfg")
 targets=bzImage
 if [ "$daq" = 1 ]; then fragments+=("$kc/daq.cfg"); targets="bzImage modules"; fi
 # Bump when the steps below change what gets built from the same inputs.

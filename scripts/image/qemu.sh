@@ -10,6 +10,11 @@
 #                                   listens on and waits for (the image test)
 #   KNOBLAB_QEMU_STORE=FILE         the store disk, instead of the image's
 #                                   store.img (the image test boots a copy)
+#   KNOBLAB_QEMU_QMP=unix:PATH      a QMP socket (the image test takes the
+#                                   kiosk's screendump through it)
+#
+# The display is QEMU's standard VGA, where the kiosk draws; with the serial
+# console here it is not shown (-display none), only dumped over QMP.
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 for f in bzImage cmdline root.img store.img; do
   [ -f "$image_dir/$f" ] || die "qemu: no $image_dir/$f; run ./run image first"
@@ -18,11 +23,17 @@ need_host_tool qemu-system-x86_64 qemu-system-x86
 
 console=${KNOBLAB_QEMU_CONSOLE:-stdio}
 case "$console" in
-  stdio) io=(-nographic) ;;
-  unix:*) io=(-display none -monitor none
+  stdio) io=(-nographic -vga std) ;;
+  unix:*) io=(-display none -vga std -monitor none
               -chardev "socket,id=con,path=${console#unix:},server=on,wait=on"
               -serial chardev:con) ;;
   *) die "qemu: KNOBLAB_QEMU_CONSOLE is stdio or unix:PATH, not $console" ;;
+esac
+qmp=${KNOBLAB_QEMU_QMP:-}
+case "$qmp" in
+  "") ;;
+  unix:*) io+=(-qmp "$qmp,server=on,wait=off") ;;
+  *) die "qemu: KNOBLAB_QEMU_QMP is unix:PATH, not $qmp" ;;
 esac
 
 exec qemu-system-x86_64 \

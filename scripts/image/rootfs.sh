@@ -38,7 +38,7 @@ mmdebstrap --quiet --variant=minbase "${includes[@]}" \
   --dpkgopt='path-exclude=/usr/share/doc/*' \
   --customize-hook="sync-in '$img/rootfs' /" \
   --customize-hook='chroot "$1" systemd-sysusers' \
-  --customize-hook='chroot "$1" systemctl enable knoblab-gpio-sim knoblab-modbus-sim hapticd knoblab-ready' \
+  --customize-hook='chroot "$1" systemctl enable knoblab-gpio-sim knoblab-modbus-sim hapticd knoblab-ready knoblab-ui' \
   --customize-hook=': >"$1/etc/machine-id"' \
   --customize-hook='mkdir -p "$1/var/lib/knoblab"' \
   --customize-hook='chroot "$1" systemctl mask getty-static.service getty@tty1.service apt-daily.timer apt-daily-upgrade.timer e2scrub_all.timer e2scrub_reap.service' \

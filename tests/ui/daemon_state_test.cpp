@@ -57,5 +57,15 @@ TEST(FaultReading, EstopAndTheAmplifierAreReadApartFromTheOtherFaults) {
   EXPECT_FALSE(none.estop || none.amplifier);
 }
 
+TEST(ModbusReading, ARunningPollerIsOkItsProblemsAreSaidInWordsAndNoPollerIsOff) {
+  EXPECT_EQ(read_modbus("running").text, "ok");
+  EXPECT_TRUE(read_modbus("running|amp-enabled").ok);
+  const ModbusReading bad = read_modbus("running|amp-comms-lost|biometrics-stale");
+  EXPECT_FALSE(bad.ok);
+  EXPECT_EQ(bad.text, "amp comms lost, biometrics stale");
+  EXPECT_EQ(read_modbus("ok").text, "off");
+  EXPECT_TRUE(read_modbus("ok").ok);
+}
+
 }  // namespace
 }  // namespace knoblab::ui

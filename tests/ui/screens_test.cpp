@@ -57,8 +57,10 @@ TEST_P(Screens, RenderWholeWithTheLoopRunning) {
   // Real data in the library: a capture of the simulated knob, fitted, looked at.
   for (const std::vector<std::string>& args :
        {std::vector<std::string>{"simulate", "--knob", "moderate-detents", "--seconds", "3", "--db", daemon.db()},
-        std::vector<std::string>{"fit", "--capture", "1", "--db", daemon.db()},
-        std::vector<std::string>{"discrepancy", "--capture", "1", "--db", daemon.db()}}) {
+        std::vector<std::string>{"fit", "--capture", "1", "--db", daemon.db(), "--report", daemon.dir() + "/fit",
+                                 "--format", "png", "--dpi", "50"},
+        std::vector<std::string>{"discrepancy", "--capture", "1", "--db", daemon.db(), "--report",
+                                 daemon.dir() + "/discrepancy", "--format", "png", "--dpi", "50"}}) {
     const test::RunResult r = test::run_knoblab(args);
     ASSERT_EQ(r.exit_code, 0) << args[0] << ": " << r.err;
   }
@@ -75,6 +77,10 @@ TEST_P(Screens, RenderWholeWithTheLoopRunning) {
   EXPECT_TRUE(loop.find("kHz") != std::string::npos || loop.find("Hz") != std::string::npos) << s.out;
   EXPECT_EQ(named(s.out, "mode"), "idle") << s.out;
   EXPECT_EQ(named(s.out, "estop"), "e-stop ok") << s.out;
+  if (screen == "review") {
+    EXPECT_EQ(named(s.out, "reviewTitle"), "moderate-detents · capture 1") << s.out;
+    EXPECT_EQ(named(s.out, "reviewEmpty"), "") << s.out;
+  }
   if (screen == "library") {
     EXPECT_EQ(named(s.out, "knobTitle"), "moderate-detents") << s.out;
     EXPECT_EQ(named(s.out, "param.A_pos"), "11.0 mN·m") << s.out;  // the simulated knob's 11 mN·m detents
@@ -82,7 +88,7 @@ TEST_P(Screens, RenderWholeWithTheLoopRunning) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AtPanelSizes, Screens,
-                         ::testing::Combine(::testing::Values("home", "system", "library"),
+                         ::testing::Combine(::testing::Values("home", "system", "library", "review"),
                                             ::testing::Values("1024x600", "1280x800")),
                          [](const auto& p) {
                            std::string name = std::get<0>(p.param) + "_" + std::get<1>(p.param);

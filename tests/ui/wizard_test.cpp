@@ -29,6 +29,12 @@
 namespace knoblab::ui {
 namespace {
 
+// Every warning Qt and QML print while the test runs: there must be none.
+QStringList g_warnings;
+void keep_warnings(QtMsgType type, const QMessageLogContext&, const QString& text) {
+  if (type != QtDebugMsg && type != QtInfoMsg) g_warnings << text;
+}
+
 bool spin_until(const std::function<bool()>& done, int ms = 60000) {
   QElapsedTimer t;
   t.start();
@@ -207,6 +213,7 @@ TEST(CaptureWizard, DrivenByTouchItCapturesFitsFindsAndStoresWhatTheCliWould) {
   EXPECT_EQ(e.value("status").toString(), "complete");
   EXPECT_FALSE(e.value("fit").isNull());
   EXPECT_FALSE(e.value("discrepancy").isNull());
+  EXPECT_TRUE(g_warnings.isEmpty()) << g_warnings.join("\n").toStdString();
   ::shm_unlink(ring.c_str());
 }
 
@@ -217,6 +224,7 @@ int main(int argc, char** argv) {
   // Offscreen, the software renderer: no display needed, the same pixels anywhere.
   qputenv("QT_QPA_PLATFORM", "offscreen");
   qputenv("QT_QUICK_BACKEND", "software");
+  qInstallMessageHandler(knoblab::ui::keep_warnings);
   QGuiApplication app(argc, argv);
   ::testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();

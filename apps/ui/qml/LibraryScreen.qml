@@ -11,6 +11,7 @@ Item {
     id: library
     required property KnobLibrary knobs
     required property JobRunner jobs
+    signal review(int captureId)
     // The capture shown on the right (0: the newest).
     property int captureId: 0
     readonly property var entry: {
@@ -138,6 +139,12 @@ Item {
                     entry: library.entry
                     jobs: library.jobs
                     Layout.fillWidth: true
+                }
+                ActionButton {
+                    objectName: "reviewButton"
+                    visible: library.entry !== null && (library.entry.fit !== null || library.entry.discrepancy !== null)
+                    text: "Review the plots"
+                    onActivated: library.review(library.entry.capture_id)
                 }
                 JobProgress {
                     jobs: library.jobs

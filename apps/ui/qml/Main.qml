@@ -15,6 +15,7 @@ ApplicationWindow {
 
     visible: true
     title: "knoblab"
+    Component.onCompleted: window.knobs.refresh()
     color: Theme.background
     onWidthChanged: Theme.scale = Math.min(width / 1024, height / 600)
     onHeightChanged: Theme.scale = Math.min(width / 1024, height / 600)
@@ -22,16 +23,21 @@ ApplicationWindow {
     readonly property var screens: ({
             system: systemScreen,
             library: libraryScreen,
-            capture: captureScreen
+            capture: captureScreen,
+            review: reviewScreen
         })
 
-    function open(name) {
+    function open(name, properties) {
         const screen = window.screens[name];
         if (screen === undefined) {
             bar.show("no screen called " + name, "error");
             return;
         }
-        stack.push(screen);
+        stack.push(screen, properties !== undefined ? properties : {});
+    }
+    // The capture a screen opened with --screen shows first (the newest).
+    function newestCapture() {
+        return window.knobs.entries.length > 0 ? window.knobs.entries[0].capture_id : 0;
     }
 
     header: StatusStrip {
@@ -70,6 +76,14 @@ ApplicationWindow {
         LibraryScreen {
             knobs: window.knobs
             jobs: window.jobs
+            onReview: captureId => window.open("review", { captureId: captureId })
+        }
+    }
+    Component {
+        id: reviewScreen
+        ReviewScreen {
+            knobs: window.knobs
+            captureId: window.newestCapture()
         }
     }
 

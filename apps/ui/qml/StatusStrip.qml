@@ -62,9 +62,8 @@ Rectangle {
         }
         Reading {
             objectName: "modbus"
-            readonly property string modbus: strip.link.state.modbus !== undefined ? strip.link.state.modbus : "–"
-            text: "Modbus " + modbus
-            ok: modbus === "ok" || modbus === "off" || modbus === "–"
+            text: "Modbus " + strip.link.modbus
+            ok: strip.link.modbusOk
         }
         Reading {
             objectName: "overruns"

@@ -70,6 +70,7 @@ void DaemonLink::on_state(const QVariantMap& state, double seconds) {
   std::vector<std::string> names;
   for (const QString& f : state.value(QStringLiteral("faults")).toStringList()) names.push_back(f.toStdString());
   faults_ = read_faults(names);
+  modbus_ = read_modbus(state.value(QStringLiteral("modbus")).toString().toStdString());
   const auto cycles = state.value(QStringLiteral("cycles")).toULongLong();
   rate_hz_ = meter_.update(cycles, seconds).value_or(0.0);
   emit stateChanged();

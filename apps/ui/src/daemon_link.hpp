@@ -31,6 +31,9 @@ class DaemonLink : public QObject {
   Q_PROPERTY(QStringList faults READ faults NOTIFY stateChanged)
   Q_PROPERTY(bool estop READ estop NOTIFY stateChanged)
   Q_PROPERTY(bool amplifierFault READ amplifierFault NOTIFY stateChanged)
+  // The Modbus poller in words ("ok", "off", "biometrics stale"), and whether all is well.
+  Q_PROPERTY(QString modbus READ modbus NOTIFY stateChanged)
+  Q_PROPERTY(bool modbusOk READ modbusOk NOTIFY stateChanged)
   // The telemetry ring hapticd writes ("" when none, or not connected).
   Q_PROPERTY(QString telemetryName READ telemetryName NOTIFY telemetryNameChanged)
   // The loop's rate as measured from its cycle counter (0 until known).
@@ -50,6 +53,8 @@ class DaemonLink : public QObject {
   QStringList faults() const { return state_.value(QStringLiteral("faults")).toStringList(); }
   bool estop() const { return faults_.estop; }
   bool amplifierFault() const { return faults_.amplifier; }
+  QString modbus() const { return QString::fromStdString(modbus_.text); }
+  bool modbusOk() const { return modbus_.ok; }
   double measuredRateHz() const { return rate_hz_; }
   QString telemetryName() const { return telemetry_name_; }
 
@@ -84,6 +89,7 @@ class DaemonLink : public QObject {
   QString problem_, telemetry_name_;
   QVariantMap state_, stats_;
   FaultReading faults_;
+  ModbusReading modbus_{true, "–"};
   LoopRateMeter meter_;
   double rate_hz_ = 0.0;
   int next_token_ = 1;

@@ -1,5 +1,6 @@
 #include "daemon_state.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace knoblab::ui {
@@ -37,6 +38,25 @@ FaultReading read_faults(const std::vector<std::string>& faults) {
     else if (f == "amplifier" || f == "amp_comms") r.amplifier = true;
     else r.others.push_back(f);
   }
+  return r;
+}
+
+ModbusReading read_modbus(const std::string& status) {
+  if (status.empty()) return {true, "–"};
+  if (status == "ok") return {true, "off"};
+  ModbusReading r{true, ""};
+  std::size_t at = 0;
+  while (at <= status.size()) {
+    const auto bar = std::min(status.find('|', at), status.size());
+    std::string flag = status.substr(at, bar - at);
+    at = bar + 1;
+    if (flag == "running" || flag == "amp-enabled" || flag.empty()) continue;
+    for (char& c : flag)
+      if (c == '-') c = ' ';
+    r.ok = false;
+    r.text += (r.text.empty() ? "" : ", ") + flag;
+  }
+  if (r.ok) r.text = "ok";
   return r;
 }
 

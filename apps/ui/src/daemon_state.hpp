@@ -37,4 +37,14 @@ struct FaultReading {
 };
 FaultReading read_faults(const std::vector<std::string>& faults);
 
+// get_state's `modbus`: the poller's status flags joined by '|' ("running",
+// "running|amp-enabled", "running|biometrics-stale"; "ok" when no poller
+// runs). The strip says "ok" while it runs without a problem, "off" without
+// a poller, else the problems in words.
+struct ModbusReading {
+  bool ok = true;
+  std::string text;
+};
+ModbusReading read_modbus(const std::string& status);
+
 }  // namespace knoblab::ui

@@ -48,8 +48,13 @@ bool JobRunner::start(const QString& kind, qint64 captureId) {
       done(-1, QProcess::CrashExit);
     }
   });
+  // The report too, stored with the result: its figures' CSVs are what the
+  // review screens plot (small PNGs: the pictures are not what is wanted).
   process_->start(knoblab_, {kind, QStringLiteral("--capture"), QString::number(captureId), QStringLiteral("--db"), db_,
-                             QStringLiteral("--json"), scratch_->filePath(QStringLiteral("result.json"))});
+                             QStringLiteral("--json"), scratch_->filePath(QStringLiteral("result.json")),
+                             QStringLiteral("--report"), scratch_->filePath(QStringLiteral("report")),
+                             QStringLiteral("--format"), QStringLiteral("png"), QStringLiteral("--dpi"),
+                             QStringLiteral("50")});
   emit runningChanged();
   emit progressChanged();
   return true;

@@ -52,6 +52,15 @@ void KnobLibrary::loaded(const QVariantList& entries, const QString& error) {
   }
 }
 
+QString KnobLibrary::resultFile(const QString& kind, qint64 id, const QString& name) {
+  try {
+    return QString::fromStdString(read_result_file(db_.toStdString(), kind.toStdString(), id, name.toStdString()));
+  } catch (const std::exception& e) {
+    emit message(QString::fromUtf8(e.what()), QStringLiteral("error"));
+    return {};
+  }
+}
+
 QVariantMap KnobLibrary::entry(qint64 captureId) const {
   for (const QVariant& v : entries_) {
     const QVariantMap m = v.toMap();

@@ -29,6 +29,10 @@ class KnobLibrary : public QObject {
   Q_INVOKABLE void refresh();
   // The entry of a capture ({} when it is not in the library).
   Q_INVOKABLE QVariantMap entry(qint64 captureId) const;
+  // A file stored with a result ("fit" or "discrepancy", its id), e.g. a
+  // report figure's CSV; "" when there is none (a message says why when the
+  // store could not be read).
+  Q_INVOKABLE QString resultFile(const QString& kind, qint64 id, const QString& name);
 
  signals:
   void entriesChanged();

@@ -53,6 +53,29 @@ std::vector<LibraryEntry> read_library(const std::filesystem::path& db) {
   return out;
 }
 
+std::string read_result_file(const std::filesystem::path& db, const std::string& kind, std::int64_t id,
+                             const std::string& name) {
+  if (!std::filesystem::exists(db)) return {};
+  try {
+    store::OpenOptions o;
+    o.read_only = true;
+    store::Store s = store::Store::open(db, o);
+    if (kind == "fit") {
+      for (const store::FitFileInfo& f : s.list_fit_files(id))
+        if (f.name == name) {
+          const std::vector<std::uint8_t> bytes = s.load_fit_file(id, name);
+          return {bytes.begin(), bytes.end()};
+        }
+      return {};
+    }
+    for (const store::ResultFile& f : s.load_discrepancy_files(id))
+      if (f.name == name) return {f.bytes.begin(), f.bytes.end()};
+    return {};
+  } catch (const std::exception& e) {
+    throw std::runtime_error("cannot read " + name + " of " + kind + " " + std::to_string(id) + ": " + e.what());
+  }
+}
+
 nlohmann::json entry_json(const LibraryEntry& e) {
   nlohmann::json j = {{"capture_id", e.capture_id}, {"knob", e.knob},         {"status", e.status},
                       {"started_at", e.started_at}, {"stimulus", e.stimulus}, {"orientation", e.orientation},

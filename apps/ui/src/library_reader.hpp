@@ -31,6 +31,12 @@ struct LibraryEntry {
 // library; one that cannot be read throws std::runtime_error saying why.
 std::vector<LibraryEntry> read_library(const std::filesystem::path& db);
 
+// One file stored with a result (`kind` "fit" or "discrepancy", its id): a
+// report figure's CSV, for instance. Empty when there is no such file; throws
+// std::runtime_error when the store cannot be read.
+std::string read_result_file(const std::filesystem::path& db, const std::string& kind, std::int64_t id,
+                             const std::string& name);
+
 // An entry as the screens read it: SI values as stored, the fit's
 // parameters with their 95 % intervals, the findings' names and sentences.
 nlohmann::json entry_json(const LibraryEntry& e);

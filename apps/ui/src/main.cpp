@@ -123,5 +123,12 @@ int main(int argc, char** argv) {
   if (!o.screenshot.empty()) return screenshot(*window, link, library, o);
   if (o.fullscreen) window->showFullScreen();
   else window->show();
+  QTimer status;
+  if (!o.status_file.empty()) {
+    QObject::connect(&status, &QTimer::timeout, [&] {
+      knoblab::ui::write_status(QString::fromStdString(o.status_file), window->contentItem());
+    });
+    status.start(1000);
+  }
   return QGuiApplication::exec();
 }

@@ -1,6 +1,9 @@
 #include "screen_check.hpp"
 
 #include <QHash>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QSaveFile>
 #include <QRectF>
 
 #include <algorithm>
@@ -81,6 +84,18 @@ QStringList named_texts(QQuickItem* root) {
   QStringList out;
   if (root) collect(root, out);
   return out;
+}
+
+bool write_status(const QString& path, QQuickItem* root) {
+  QJsonObject texts;
+  for (const QString& line : named_texts(root)) {
+    const qsizetype colon = line.indexOf(QStringLiteral(": "));
+    texts.insert(line.left(colon), line.mid(colon + 2));
+  }
+  QSaveFile f(path);
+  if (!f.open(QIODevice::WriteOnly)) return false;
+  f.write(QJsonDocument(QJsonObject{{QStringLiteral("texts"), texts}}).toJson(QJsonDocument::Compact));
+  return f.commit();
 }
 
 bool drawn(const QImage& image) {

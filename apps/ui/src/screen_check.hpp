@@ -18,6 +18,11 @@ QStringList clipped_texts(QQuickItem* root);
 // item order: what a test (or the image test) reads off a screen.
 QStringList named_texts(QQuickItem* root);
 
+// The named texts as a JSON object {"texts": {name: text, …}}, written to
+// `path` atomically (a temporary file renamed over it). False when it could
+// not be written.
+bool write_status(const QString& path, QQuickItem* root);
+
 // Whether the image shows more than a blank fill: at least 2 % of its pixels
 // differ from its most common colour.
 bool drawn(const QImage& image);

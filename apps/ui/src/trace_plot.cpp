@@ -1,5 +1,7 @@
 #include "trace_plot.hpp"
 
+#include "plot_axes.hpp"
+
 #include <QPainter>
 #include <QPainterPath>
 
@@ -8,19 +10,6 @@
 #include <numbers>
 
 namespace knoblab::ui {
-
-namespace {
-
-// A "nice" step for about `ticks` divisions of `span`: 1, 2 or 5 × 10^k.
-double nice_step(double span, int ticks) {
-  const double raw = span / std::max(1, ticks);
-  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
-  for (const double m : {1.0, 2.0, 5.0, 10.0})
-    if (m * mag >= raw) return m * mag;
-  return 10.0 * mag;
-}
-
-}  // namespace
 
 TracePlot::TracePlot(QQuickItem* parent) : QQuickPaintedItem(parent) { setAntialiasing(true); }
 
@@ -89,14 +78,7 @@ void TracePlot::paint(QPainter* p) {
     lo -= pad, hi += pad;
     const auto X = [&](double t) { return area.left() + (t - t0) / (t1 - t0) * area.width(); };
     const auto Y = [&](double v) { return area.bottom() - (v - lo) / (hi - lo) * area.height(); };
-    // Grid and value labels.
-    const double step = nice_step(hi - lo, 4);
-    p->setPen(QPen(text_color_, 1, Qt::DotLine));
-    for (double v = std::ceil(lo / step) * step; v <= hi; v += step) {
-      p->drawLine(QPointF(area.left(), Y(v)), QPointF(area.right(), Y(v)));
-      p->drawText(QRectF(0, Y(v) - fm.height() / 2, left - 4, fm.height()), Qt::AlignRight | Qt::AlignVCenter,
-                  QString::number(std::abs(v) < step * 1e-6 ? 0.0 : v, 'g', 4));
-    }
+    draw_ticks(*p, area, lo, hi, true, text_color_);
     p->drawText(QRectF(area.left(), area.bottom() + 2, area.width(), bottom),
                 Qt::AlignLeft | Qt::AlignTop, QStringLiteral("−%1 s").arg(feed_->seconds(), 0, 'g', 3));
     p->drawText(QRectF(area.left(), area.bottom() + 2, area.width(), bottom), Qt::AlignRight | Qt::AlignTop,

@@ -8,6 +8,7 @@ namespace knoblab::ui {
 std::string ui_usage() {
   return "usage: knoblab-ui [--socket PATH] [--db FILE] [--knoblab PATH] [--no-supervise] [--fullscreen]\n"
          "                  [--size WxH] [--screen NAME] [--screenshot OUT.png [--wait SECONDS]]\n"
+         "                  [--status-file FILE]\n"
          "\n"
          "The knoblab touchscreen front-end. It talks to hapticd through its control socket\n"
          "(default /run/knoblab/hapticd.sock) and supervises it: if the UI stops, the motor\n"
@@ -17,7 +18,8 @@ std::string ui_usage() {
          "there. Screens: home, system, library.\n"
          "--screenshot renders the first screen offscreen at --size, waits up to --wait s\n"
          "(default 5) for hapticd's state, writes the PNG, checks that no text is clipped and\n"
-         "no QML warning was printed, and exits 0 (all well), 1 (a problem, printed) or 2.\n";
+         "no QML warning was printed, and exits 0 (all well), 1 (a problem, printed) or 2.\n"
+         "--status-file writes what the screen shows (its named texts) as JSON every second.\n";
 }
 
 UiOptions parse_ui_options(const std::vector<std::string>& args) {
@@ -35,6 +37,7 @@ UiOptions parse_ui_options(const std::vector<std::string>& args) {
     else if (a == "--fullscreen") o.fullscreen = true;
     else if (a == "--screen") o.screen = need(i);
     else if (a == "--screenshot") o.screenshot = need(i);
+    else if (a == "--status-file") o.status_file = need(i);
     else if (a == "--help" || a == "-h") o.help = true;
     else if (a == "--version") o.version = true;
     else if (a == "--size") {

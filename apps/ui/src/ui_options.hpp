@@ -18,6 +18,9 @@ struct UiOptions {
   // Render the first screen offscreen to this PNG, check its layout, exit.
   std::string screenshot;
   double wait_s = 5.0;  // for hapticd's first state before the screenshot
+  // Every second, what the screen shows (its named texts) as JSON, written
+  // atomically: how a test or a remote look tells what the kiosk displays.
+  std::string status_file;
   bool help = false, version = false;
 };
 

@@ -2,6 +2,6 @@
 # with the CI image's kernel). Other distros get linux-yocto-rt unchanged.
 FILESEXTRAPATHS:prepend:knoblab-distro := "${KNOBLAB_KERNEL_CONFIG_DIR}:"
 
-SRC_URI:append:knoblab-distro = " file://rt.cfg file://loop-core.cfg file://daq.cfg"
+SRC_URI:append:knoblab-distro = " file://rt.cfg file://loop-core.cfg file://daq.cfg file://display.cfg"
 # gpio-sim for the images that run hapticd on simulated lines (ptest, CI).
 SRC_URI:append:knoblab-distro = "${@bb.utils.contains('DISTRO_FEATURES', 'ptest', ' file://sim-io.cfg', '', d)}"

@@ -42,6 +42,11 @@ PACKAGECONFIG[tests] = "-DKNOBLAB_TESTS=ON -DCMAKE_GTEST_DISCOVER_TESTS_DISCOVER
 PACKAGECONFIG[xenomai] = "-DKNOBLAB_RT_BACKEND=xenomai -DKNOBLAB_XENO_CONFIG=${STAGING_BINDIR}/xeno-config, \
                           -DKNOBLAB_RT_BACKEND=posix,xenomai"
 
+# knoblab-ui (the Qt 6 kiosk) is not built here yet: that needs meta-qt6's
+# qtbase and qtdeclarative in DEPENDS and the layer in LAYERDEPENDS. The CI
+# image (images/qemu) carries it meanwhile.
+EXTRA_OECMAKE += "-DKNOBLAB_UI=OFF"
+
 do_configure:prepend() {
     # xeno-config prefixes its paths with DESTDIR: the target sysroot's.
     if ${@bb.utils.contains('PACKAGECONFIG', 'xenomai', 'true', 'false', d)}; then

@@ -3,6 +3,6 @@
 # turns on mainline PREEMPT_RT. Other distros get the kernel unchanged.
 FILESEXTRAPATHS:prepend:knoblab-distro := "${KNOBLAB_KERNEL_CONFIG_DIR}:"
 
-SRC_URI:append:knoblab-distro = " file://rt.cfg file://loop-core.cfg file://daq.cfg"
+SRC_URI:append:knoblab-distro = " file://rt.cfg file://loop-core.cfg file://daq.cfg file://display.cfg"
 # gpio-sim for the images that run hapticd on simulated lines (ptest, CI).
 SRC_URI:append:knoblab-distro = "${@bb.utils.contains('DISTRO_FEATURES', 'ptest', ' file://sim-io.cfg', '', d)}"
