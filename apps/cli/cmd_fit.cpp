@@ -83,8 +83,7 @@ int run_fit(const Args& args) {
   const FitRun run = fit_capture(in.capture, prep, opt);
   const fit::FitResult& r = run.result;
   const std::string json = fit::to_json(r);
-  std::optional<std::string> render_model;
-  if (args.has("render-model")) render_model = fit::to_json(fit::reduce_to_render(r, run.data.omega));
+  const std::string render_model = fit::to_json(fit::reduce_to_render(r, run.data.omega));
   std::vector<store::ResultFile> files;  // the report, drawn aside until the fit is kept
   if (args.has("report")) {
     const StagedReport staged;
@@ -94,6 +93,9 @@ int run_fit(const Args& args) {
     ro.title = title;
     fit::write_report(r, run.data, fit::predict(r, run.data), staged.dir(), ro);
     staged.add("fit.json", json + "\n");
+    // What hapticd renders of this fit (load_model), so that a stored fit
+    // can be felt without fitting again (knoblab-ui's "Feel it").
+    staged.add("render_model.json", render_model + "\n");
     files = staged.files();
   }
   // The last chance to cancel: from here the fit is written out whole.
@@ -106,7 +108,7 @@ int run_fit(const Args& args) {
     print_fit(stdout, r);
   }
   if (auto out = args.get("json")) write_text(*out, json);
-  if (auto out = args.get("render-model")) write_text(*out, *render_model);
+  if (auto out = args.get("render-model")) write_text(*out, render_model);
   if (auto dir = args.get("report")) {
     write_result_files(files, *dir);
     if (!json_to_stdout) std::printf("report: %zu files in %s\n", files.size(), dir->c_str());

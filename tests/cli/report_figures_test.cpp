@@ -36,7 +36,9 @@ TEST_F(ReportFigures, FormatSizeAndDpiChooseTheFilesAndThePngsPixels) {
   const RunResult r = run_knoblab({"fit", "--input", csv_, "--report", report.string(), "--format", "png",
                                    "--size", "100x80mm", "--dpi", "127"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("report: 9 files in"), std::string::npos) << r.out;  // 4 PNGs, 4 CSVs, fit.json
+  // 4 PNGs, 4 CSVs, fit.json, render_model.json
+  EXPECT_NE(r.out.find("report: 10 files in"), std::string::npos) << r.out;
+  EXPECT_NE(read_file(report / "render_model.json").find("\"model\": \"render4\""), std::string::npos);
   for (const char* stem : {"torque_position", "torque_velocity", "torque_time", "ci_torque"}) {
     const std::string png = read_file(report / (std::string(stem) + ".png"));
     ASSERT_GT(png.size(), 24u) << stem;

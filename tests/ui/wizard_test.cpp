@@ -69,6 +69,7 @@ class Screen {
   bool tap(const QString& name) const {
     QQuickItem* i = item(name);
     if (!i || !i->isEnabled()) return false;
+    scroll_to(i);
     QPointF c = i->mapToScene(QPointF(i->width() / 2, i->height() / 2));
     for (QPointF before; before != c;) {
       before = c;
@@ -79,6 +80,18 @@ class Screen {
     QTest::mouseClick(window_, Qt::LeftButton, Qt::NoModifier, c.toPoint());
     wait(300);
     return true;
+  }
+  // As a finger would flick: a scrolling parent moved until the item is on screen.
+  void scroll_to(QQuickItem* i) const {
+    for (QQuickItem* p = i->parentItem(); p; p = p->parentItem()) {
+      if (!p->inherits("QQuickFlickable")) continue;
+      const QRectF box = i->mapRectToItem(p, QRectF(0, 0, i->width(), i->height()));
+      const qreal y = p->property("contentY").toReal();
+      if (box.bottom() > p->height()) p->setProperty("contentY", y + box.bottom() - p->height() + 10);
+      else if (box.top() < 0) p->setProperty("contentY", y + box.top() - 10);
+      wait(100);
+      return;
+    }
   }
   static void wait(int ms) {
     QElapsedTimer t;
@@ -177,8 +190,10 @@ TEST(CaptureWizard, DrivenByTouchItCapturesFitsFindsAndStoresWhatTheCliWould) {
 
   // The CLI on the same capture: the same numbers, shown the way the screen shows them.
   test::ScratchDir dir;
+  // (With the report, as the UI runs it: the library's latest fit is this one.)
   const auto fit = test::run_knoblab({"fit", "--capture", std::to_string(capture), "--db", daemon.db(), "--json",
-                                      (dir / "fit.json").string()});
+                                      (dir / "fit.json").string(), "--report", (dir / "report").string(), "--format",
+                                      "png", "--dpi", "50"});
   ASSERT_EQ(fit.exit_code, 0) << fit.err;
   const auto disc = test::run_knoblab({"discrepancy", "--capture", std::to_string(capture), "--db", daemon.db(),
                                        "--json", (dir / "d.json").string()});
@@ -213,6 +228,15 @@ TEST(CaptureWizard, DrivenByTouchItCapturesFitsFindsAndStoresWhatTheCliWould) {
   EXPECT_EQ(e.value("status").toString(), "complete");
   EXPECT_FALSE(e.value("fit").isNull());
   EXPECT_FALSE(e.value("discrepancy").isNull());
+
+  // "Feel it" from the library: the fit's stored render model, rendered on the knob.
+  ASSERT_TRUE(screen.tap("openLibrary"));
+  ASSERT_TRUE(spin_until([&] { return screen.text("knobTitle") == "wizard-knob"; }));
+  ASSERT_TRUE(spin_until([&] { return screen.tap("feelButton"); }));
+  EXPECT_TRUE(spin_until([&] { return link.mode() == "render"; })) << messages.join(" | ").toStdString();
+  EXPECT_EQ(screen.text("feelState"), "The knob renders this fit (Eq. 14): turn it.");
+  ASSERT_TRUE(screen.tap("feelButton"));
+  EXPECT_TRUE(spin_until([&] { return link.mode() == "idle"; }));
   EXPECT_TRUE(g_warnings.isEmpty()) << g_warnings.join("\n").toStdString();
   ::shm_unlink(ring.c_str());
 }

@@ -11,6 +11,7 @@ Item {
     id: library
     required property KnobLibrary knobs
     required property JobRunner jobs
+    required property DaemonLink link
     signal review(int captureId)
     // The capture shown on the right (0: the newest).
     property int captureId: 0
@@ -21,9 +22,29 @@ Item {
                 return list[i];
         return list.length > 0 ? list[0] : null;
     }
+    // The capture whose fit the knob renders now (0: none).
+    property int feeling: 0
     readonly property bool busyHere: jobs.running && entry !== null && jobs.captureId === entry.capture_id
 
     Component.onCompleted: library.knobs.refresh()
+
+    // "Feel it": the fit's render model (stored with it) loaded into hapticd
+    // and rendered; again: back to idle.
+    function feel() {
+        if (library.feeling === library.entry.capture_id) {
+            library.link.request("set_mode", { mode: "idle" });
+            library.feeling = 0;
+            return;
+        }
+        const text = library.knobs.resultFile("fit", library.entry.fit.id, "render_model.json");
+        if (text === "") {
+            library.link.message("this fit has no render model stored: fit it again", "warning");
+            return;
+        }
+        library.link.request("load_model", JSON.parse(text).params);
+        library.link.request("set_mode", { mode: "render" });
+        library.feeling = library.entry.capture_id;
+    }
 
     RowLayout {
         anchors.fill: parent
@@ -139,6 +160,25 @@ Item {
                     entry: library.entry
                     jobs: library.jobs
                     Layout.fillWidth: true
+                }
+                RowLayout {
+                    spacing: Theme.gap
+                    visible: library.entry !== null && library.entry.fit !== null
+                    ActionButton {
+                        objectName: "feelButton"
+                        text: library.feeling === library.entry.capture_id ? "Stop rendering" : "Feel it"
+                        enabled: library.link.connected
+                        onActivated: library.feel()
+                    }
+                    Text {
+                        objectName: "feelState"
+                        Layout.fillWidth: true
+                        wrapMode: Text.WordWrap
+                        text: library.feeling === library.entry.capture_id && library.link.mode === "render"
+                              ? "The knob renders this fit (Eq. 14): turn it." : "Render this fit on the force-feedback knob (Eq. 14)."
+                        color: Theme.muted
+                        font.pixelSize: Theme.fontSmall
+                    }
                 }
                 ActionButton {
                     objectName: "reviewButton"

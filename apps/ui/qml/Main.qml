@@ -76,6 +76,7 @@ ApplicationWindow {
         LibraryScreen {
             knobs: window.knobs
             jobs: window.jobs
+            link: window.link
             onReview: captureId => window.open("review", { captureId: captureId })
         }
     }
