@@ -24,6 +24,7 @@ Item {
     }
     // The capture whose fit the knob renders now (0: none).
     property int feeling: 0
+    readonly property bool feelingThis: entry !== null && feeling === entry.capture_id
     readonly property bool busyHere: jobs.running && entry !== null && jobs.captureId === entry.capture_id
 
     Component.onCompleted: library.knobs.refresh()
@@ -31,7 +32,7 @@ Item {
     // "Feel it": the fit's render model (stored with it) loaded into hapticd
     // and rendered; again: back to idle.
     function feel() {
-        if (library.feeling === library.entry.capture_id) {
+        if (library.feelingThis) {
             library.link.request("set_mode", { mode: "idle" });
             library.feeling = 0;
             return;
@@ -166,7 +167,7 @@ Item {
                     visible: library.entry !== null && library.entry.fit !== null
                     ActionButton {
                         objectName: "feelButton"
-                        text: library.feeling === library.entry.capture_id ? "Stop rendering" : "Feel it"
+                        text: library.feelingThis ? "Stop rendering" : "Feel it"
                         enabled: library.link.connected
                         onActivated: library.feel()
                     }
@@ -174,7 +175,7 @@ Item {
                         objectName: "feelState"
                         Layout.fillWidth: true
                         wrapMode: Text.WordWrap
-                        text: library.feeling === library.entry.capture_id && library.link.mode === "render"
+                        text: library.feelingThis && library.link.mode === "render"
                               ? "The knob renders this fit (Eq. 14): turn it." : "Render this fit on the force-feedback knob (Eq. 14)."
                         color: Theme.muted
                         font.pixelSize: Theme.fontSmall
