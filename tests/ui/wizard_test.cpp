@@ -13,6 +13,7 @@
 #include <QQuickWindow>
 #include <QTest>
 
+#include <algorithm>
 #include <filesystem>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -87,8 +88,12 @@ class Screen {
       if (!p->inherits("QQuickFlickable")) continue;
       const QRectF box = i->mapRectToItem(p, QRectF(0, 0, i->width(), i->height()));
       const qreal y = p->property("contentY").toReal();
-      if (box.bottom() > p->height()) p->setProperty("contentY", y + box.bottom() - p->height() + 10);
-      else if (box.top() < 0) p->setProperty("contentY", y + box.top() - 10);
+      // Within the content's bounds: beyond them the flickable springs back,
+      // and a press while it moves only stops it.
+      const qreal top = 0, bottom = std::max<qreal>(0, p->property("contentHeight").toReal() - p->height());
+      if (box.bottom() > p->height()) p->setProperty("contentY", std::clamp<qreal>(y + box.bottom() - p->height() + 10, top, bottom));
+      else if (box.top() < 0) p->setProperty("contentY", std::clamp<qreal>(y + box.top() - 10, top, bottom));
+      spin_until([&] { return !p->property("moving").toBool(); }, 5000);
       wait(100);
       return;
     }
@@ -232,8 +237,14 @@ TEST(CaptureWizard, DrivenByTouchItCapturesFitsFindsAndStoresWhatTheCliWould) {
   // "Feel it" from the library: the fit's stored render model, rendered on the knob.
   ASSERT_TRUE(screen.tap("openLibrary"));
   ASSERT_TRUE(spin_until([&] { return screen.text("knobTitle") == "wizard-knob"; }));
+  // The library re-read (the CLI's results above) settles the layout first.
+  knobs.refresh();
+  ASSERT_TRUE(spin_until([&] { return !knobs.loading(); }));
+  Screen::wait(1000);
   ASSERT_TRUE(spin_until([&] { return screen.tap("feelButton"); }));
-  EXPECT_TRUE(spin_until([&] { return link.mode() == "render"; })) << messages.join(" | ").toStdString();
+  EXPECT_TRUE(spin_until([&] { return link.mode() == "render"; }))
+      << messages.join(" | ").toStdString() << " / button: " << screen.text("feelButton").toStdString() << " at "
+      << screen.item("feelButton")->mapToScene(QPointF(0, 0)).y() << ", warnings: " << g_warnings.join(" | ").toStdString();
   EXPECT_EQ(screen.text("feelState"), "The knob renders this fit (Eq. 14): turn it.");
   ASSERT_TRUE(screen.tap("feelButton"));
   EXPECT_TRUE(spin_until([&] { return link.mode() == "idle"; }));

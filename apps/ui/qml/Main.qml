@@ -88,9 +88,15 @@ ApplicationWindow {
         }
     }
 
+    // The message bar takes its own room at the bottom: it never covers a
+    // button of the screen above it.
     StackView {
         id: stack
-        anchors.fill: parent
+        anchors.left: parent.left
+        anchors.right: parent.right
+        anchors.top: parent.top
+        anchors.bottom: bar.visible ? bar.top : parent.bottom
+        anchors.bottomMargin: bar.visible ? Theme.gap : 0
         initialItem: homeScreen
         Component.onCompleted: if (window.startScreen !== "home")
             window.open(window.startScreen)
