@@ -120,7 +120,13 @@ class Screen {
   QQuickWindow* window_;
 };
 
-TEST(CaptureWizard, DrivenByTouchItCapturesFitsFindsAndStoresWhatTheCliWould) {
+// At both panel sizes the appliance is designed for: each step's screen is kept.
+class CaptureWizard : public ::testing::TestWithParam<QSize> {};
+
+TEST_P(CaptureWizard, DrivenByTouchItCapturesFitsFindsAndStoresWhatTheCliWould) {
+  const QSize panel = GetParam();
+  const std::string size = std::to_string(panel.width()) + "x" + std::to_string(panel.height());
+  g_warnings.clear();
   const std::string ring = "/knoblab-ui-wizard-" + std::to_string(::getpid());
   // At the rate the camera's PID is tuned for (the tests' gentle 1 kHz makes
   // the simulated capture chatter); no overrun fault on this non-realtime host.
@@ -143,8 +149,8 @@ TEST(CaptureWizard, DrivenByTouchItCapturesFitsFindsAndStoresWhatTheCliWould) {
                                {"jobs", QVariant::fromValue(&jobs)},
                                {"feed", QVariant::fromValue(&feed)},
                                {"startScreen", QString("home")},
-                               {"width", 1024},
-                               {"height", 600}});
+                               {"width", panel.width()},
+                               {"height", panel.height()}});
   engine.loadFromModule("Knoblab.Ui", "Main");
   ASSERT_FALSE(engine.rootObjects().isEmpty());
   auto* window = qobject_cast<QQuickWindow*>(engine.rootObjects().first());
@@ -156,14 +162,14 @@ TEST(CaptureWizard, DrivenByTouchItCapturesFitsFindsAndStoresWhatTheCliWould) {
   // Home → the wizard; mounted in the lab.
   ASSERT_TRUE(spin_until([&] { return screen.tap("captureButton"); }));
   ASSERT_TRUE(spin_until([&] { return screen.tap("mountTripod"); }));
-  screen.shoot("capture-1-mounting-1024x600");
+  screen.shoot("capture-1-mounting-" + size);
   ASSERT_TRUE(screen.tap("mountLab"));
   ASSERT_TRUE(screen.tap("next"));
   // The knob and its gripper.
   ASSERT_TRUE(spin_until([&] { return screen.shows("knobName.input"); }));
   screen.type("knobName", "wizard-knob");
   screen.type("gripper", "ABS print, VHB tape");
-  screen.shoot("capture-2-knob-1024x600");
+  screen.shoot("capture-2-knob-" + size);
   ASSERT_TRUE(spin_until([&] { return screen.tap("next"); }));
   // The sensor check (Table 4) runs and reports.
   ASSERT_TRUE(spin_until([&] { return screen.tap("verifySensors"); }));
@@ -171,7 +177,7 @@ TEST(CaptureWizard, DrivenByTouchItCapturesFitsFindsAndStoresWhatTheCliWould) {
   EXPECT_TRUE(screen.text("table4.theta").startsWith("angle: commanded − measured"))
       << screen.text("table4.theta").toStdString();
   ASSERT_TRUE(spin_until([&] { return link.mode() == "idle"; }));
-  screen.shoot("capture-3-sensors-1024x600");
+  screen.shoot("capture-3-sensors-" + size);
   ASSERT_TRUE(screen.tap("next"));
   // The capture, with the angle and torque live.
   ASSERT_TRUE(spin_until([&] { return screen.tap("startCapture"); }));
@@ -179,7 +185,7 @@ TEST(CaptureWizard, DrivenByTouchItCapturesFitsFindsAndStoresWhatTheCliWould) {
       << "no live angle trace";
   EXPECT_GT(screen.item("torqueTrace")->property("drawn").toInt(), 100);
   Screen::wait(1500);  // a few seconds of trace
-  screen.shoot("capture-4-capture-1024x600");
+  screen.shoot("capture-4-capture-" + size);
   // Then the fit and the discrepancy run, by themselves.
   ASSERT_TRUE(spin_until([&] { return screen.text("resultState").startsWith("Saved in the library"); }, 180000))
       << screen.text("resultState").toStdString() << " / " << messages.join(" | ").toStdString();
@@ -189,7 +195,7 @@ TEST(CaptureWizard, DrivenByTouchItCapturesFitsFindsAndStoresWhatTheCliWould) {
            (screen.shows("finding.0") || screen.text("discrepancyNone").startsWith("No finding"));
   }));
   Screen::wait(4500);  // the message bar's news fades
-  screen.shoot("capture-5-results-1024x600");
+  screen.shoot("capture-5-results-" + size);
   const int capture = static_cast<int>(screen.text("resultState").split(' ')[5].toInt());
   ASSERT_GT(capture, 0) << screen.text("resultState").toStdString();
 
@@ -251,6 +257,11 @@ TEST(CaptureWizard, DrivenByTouchItCapturesFitsFindsAndStoresWhatTheCliWould) {
   EXPECT_TRUE(g_warnings.isEmpty()) << g_warnings.join("\n").toStdString();
   ::shm_unlink(ring.c_str());
 }
+
+INSTANTIATE_TEST_SUITE_P(AtPanelSizes, CaptureWizard, ::testing::Values(QSize(1024, 600), QSize(1280, 800)),
+                         [](const auto& p) {
+                           return std::to_string(p.param.width()) + "_" + std::to_string(p.param.height());
+                         });
 
 }  // namespace
 }  // namespace knoblab::ui
