@@ -74,14 +74,14 @@ TEST_F(ResultsCli, AStoredFitKeepsItsReportFilesAndItsProvenance) {
   const RunResult r = fit_with_report();
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto written = files_in(dir_ / "fit_report");
-  EXPECT_EQ(written.size(), 17u);  // four figures as PDF, SVG, PNG and CSV, fit.json
-  EXPECT_NE(r.out.find("report: 17 files in "), std::string::npos) << r.out;
+  EXPECT_EQ(written.size(), 18u);  // four figures as PDF, SVG, PNG and CSV, fit.json, render_model.json
+  EXPECT_NE(r.out.find("report: 18 files in "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("stored as fit 1\n"), std::string::npos) << r.out;
 
   auto store = store::Store::open(db_);
   const auto fit = store.fit_info(1);
   ASSERT_TRUE(fit);
-  EXPECT_EQ(fit->file_count, 17);
+  EXPECT_EQ(fit->file_count, 18);
   EXPECT_EQ(as_map(store.load_fit_files(1)), written);  // the same bytes as the report directory
   EXPECT_EQ(written.at("fit.json"), fit->result + "\n");
   ASSERT_TRUE(fit->provenance);
@@ -98,7 +98,7 @@ TEST_F(ResultsCli, AStoredFitKeepsItsReportFilesAndItsProvenance) {
   ASSERT_EQ(rows.size(), 1u) << fits.out;
   std::string version = KNOBLAB_PROJECT_VERSION;
   version.resize(8, ' ');
-  const std::string tail = "    17  " + version + " " + sha_[1].substr(0, 12);
+  const std::string tail = "    18  " + version + " " + sha_[1].substr(0, 12);
   EXPECT_EQ(rows[0].substr(rows[0].size() - tail.size()), tail) << rows[0];
 }
 
@@ -137,7 +137,7 @@ TEST_F(ResultsCli, ListsFitsAndDiscrepancyResultsTogetherAndWritesOneOutWhole) {
   ASSERT_EQ(lines_starting(r.out, "kind ").size(), 1u) << r.out;
   const auto fit_rows = lines_starting(r.out, "fit               1        1  ");
   ASSERT_EQ(fit_rows.size(), 1u) << r.out;
-  EXPECT_NE(fit_rows[0].find("  " + version + "       17  rmse "), std::string::npos) << fit_rows[0];
+  EXPECT_NE(fit_rows[0].find("  " + version + "       18  rmse "), std::string::npos) << fit_rows[0];
   EXPECT_NE(fit_rows[0].find(" mN·m, 12.00 detents/rev"), std::string::npos) << fit_rows[0];
   const auto d_rows = lines_starting(r.out, "discrepancy       1        1  ");
   ASSERT_EQ(d_rows.size(), 1u) << r.out;
@@ -149,7 +149,7 @@ TEST_F(ResultsCli, ListsFitsAndDiscrepancyResultsTogetherAndWritesOneOutWhole) {
   const auto all = nlohmann::json::parse(r.out);
   ASSERT_EQ(all.size(), 2u);
   EXPECT_EQ(all[0]["kind"], "fit");
-  EXPECT_EQ(all[0]["files"], 17);
+  EXPECT_EQ(all[0]["files"], 18);
   EXPECT_EQ(all[0]["input_sha256"], sha_[1]);
   EXPECT_EQ(all[0]["options"]["model"], "thesis6");
   EXPECT_GT(all[0]["key"]["rmse_Nm"].get<double>(), 0.0);
@@ -182,7 +182,7 @@ TEST_F(ResultsCli, ListsFitsAndDiscrepancyResultsTogetherAndWritesOneOutWhole) {
   EXPECT_NE(r.out.find("fit 1 of capture 1, stored "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("  made by:   knoblab " + version + "\n"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("  input:     SHA-256 " + sha_[1] + " of capture 1's samples\n"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("  files:     17:\n    ci_torque.csv ("), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("  files:     18:\n    ci_torque.csv ("), std::string::npos) << r.out;
 }
 
 TEST_F(ResultsCli, RefusesWhatItCannotDoAndWritesNothing) {

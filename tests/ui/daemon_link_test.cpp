@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "daemon_link.hpp"
+#include "event_loop.hpp"
 #include "hapticd_process.hpp"
 #include "library_reader.hpp"
 
@@ -20,16 +21,7 @@ namespace {
 using test::Hapticd;
 using test::ScratchDir;
 
-// Runs the event loop until `done` holds or `ms` pass.
-bool spin_until(const std::function<bool()>& done, int ms = 20000) {
-  QElapsedTimer t;
-  t.start();
-  while (!done()) {
-    if (t.elapsed() > ms) return false;
-    QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
-  }
-  return true;
-}
+bool spin_until(const std::function<bool()>& done, int ms = 20000) { return test_loop::spin_until(done, ms); }
 
 LinkWorker::Options at(const std::string& socket) {
   LinkWorker::Options o;

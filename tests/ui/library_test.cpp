@@ -14,6 +14,7 @@
 #include "knob_library.hpp"
 #include "knoblab/store/store.hpp"
 #include "library_reader.hpp"
+#include "event_loop.hpp"
 #include "process.hpp"
 
 namespace knoblab::ui {
@@ -22,15 +23,7 @@ namespace {
 using test::run_knoblab;
 using test::ScratchDir;
 
-bool spin_until(const std::function<bool()>& done, int ms = 120000) {
-  QElapsedTimer t;
-  t.start();
-  while (!done()) {
-    if (t.elapsed() > ms) return false;
-    QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
-  }
-  return true;
-}
+bool spin_until(const std::function<bool()>& done, int ms = 120000) { return test_loop::spin_until(done, ms); }
 
 // A store with one simulated capture of moderate-detents (3 s).
 class Library : public ::testing::Test {

@@ -23,6 +23,7 @@
 #include "hapticd_process.hpp"
 #include "job_runner.hpp"
 #include "knob_library.hpp"
+#include "event_loop.hpp"
 #include "process.hpp"
 #include "screen_check.hpp"
 #include "telemetry_feed.hpp"
@@ -36,15 +37,7 @@ void keep_warnings(QtMsgType type, const QMessageLogContext&, const QString& tex
   if (type != QtDebugMsg && type != QtInfoMsg) g_warnings << text;
 }
 
-bool spin_until(const std::function<bool()>& done, int ms = 60000) {
-  QElapsedTimer t;
-  t.start();
-  while (!done()) {
-    if (t.elapsed() > ms) return false;
-    QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
-  }
-  return true;
-}
+bool spin_until(const std::function<bool()>& done, int ms = 60000) { return test_loop::spin_until(done, ms); }
 
 // The visible item with this objectName, searched through the visual tree.
 QQuickItem* find(QQuickItem* root, const QString& name) {
@@ -98,11 +91,7 @@ class Screen {
       return;
     }
   }
-  static void wait(int ms) {
-    QElapsedTimer t;
-    t.start();
-    while (t.elapsed() < ms) QCoreApplication::processEvents(QEventLoop::AllEvents, 10);
-  }
+  static void wait(int ms) { test_loop::run_for(ms); }
   // The screen as it is now, kept in build/ui-screens; no text on it cut.
   void shoot(const std::string& name) const {
     std::filesystem::create_directories(KNOBLAB_UI_SCREENS_DIR);
