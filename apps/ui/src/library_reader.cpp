@@ -14,15 +14,20 @@ nlohmann::json parsed(const std::string& text) {
   return j.is_discarded() ? nlohmann::json() : j;
 }
 
+// The store opened for reading only: it never writes, never waits for a writer.
+store::Store open_read_only(const std::filesystem::path& db) {
+  store::OpenOptions o;
+  o.read_only = true;
+  return store::Store::open(db, o);
+}
+
 }  // namespace
 
 std::vector<LibraryEntry> read_library(const std::filesystem::path& db) {
   std::vector<LibraryEntry> out;
   if (!std::filesystem::exists(db)) return out;
   try {
-    store::OpenOptions o;
-    o.read_only = true;
-    store::Store s = store::Store::open(db, o);
+    store::Store s = open_read_only(db);
     const auto fits = s.list_all_fits();
     const auto results = s.list_all_discrepancies();
     for (const store::CaptureInfo& c : s.list_captures()) {
@@ -39,11 +44,16 @@ std::vector<LibraryEntry> read_library(const std::filesystem::path& db) {
       if (meta.is_object()) e.metadata = meta;
       e.rate_hz = c.rate_hz;
       e.samples = c.sample_count;
-      // Both lists are by id: the last one of this capture is the latest.
+      // Both lists are by id: the last one of this capture is the latest,
+      // the only one whose result is parsed.
+      const store::FitInfo* fit = nullptr;
       for (const store::FitInfo& f : fits)
-        if (f.capture_id == c.id) e.fit_id = f.id, e.fit = parsed(f.result);
+        if (f.capture_id == c.id) fit = &f;
+      if (fit) e.fit_id = fit->id, e.fit = parsed(fit->result);
+      const store::DiscrepancyInfo* result = nullptr;
       for (const store::DiscrepancyInfo& d : results)
-        if (d.capture_id == c.id) e.discrepancy_id = d.id, e.discrepancy = parsed(d.result);
+        if (d.capture_id == c.id) result = &d;
+      if (result) e.discrepancy_id = result->id, e.discrepancy = parsed(result->result);
       out.push_back(std::move(e));
     }
   } catch (const std::exception& e) {
@@ -57,9 +67,7 @@ std::string read_result_file(const std::filesystem::path& db, const std::string&
                              const std::string& name) {
   if (!std::filesystem::exists(db)) return {};
   try {
-    store::OpenOptions o;
-    o.read_only = true;
-    store::Store s = store::Store::open(db, o);
+    store::Store s = open_read_only(db);
     if (kind == "fit") {
       for (const store::FitFileInfo& f : s.list_fit_files(id))
         if (f.name == name) {
