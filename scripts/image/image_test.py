@@ -17,13 +17,17 @@ Checks, in order:
   daq_modules   with daq.cfg's modules in the image: Comedi, IIO and counter load
   cyclictest    30 s on the isolated CPU; its figures are reported, never judged
   amp_enabled   render mode raises AMP_EN (read back from the gpio-sim line)
+  capture_button  LED_STATUS is lit while idle; FOOTSW pressed and released
+                on the gpio-sim chip reaches a subscribed client as hapticd's
+                capture_button event, counted in get_state, starting nothing
   capture       a swept-sine capture of the simulated knob through hapticd is
                 stored complete, every sample in the device's sqlite
   fit           `knoblab fit` on the device stores a fit that finds the knob's
                 12 detents per revolution
   discrepancy   `knoblab discrepancy` on the device stores its result
   estop         ESTOP_N pulled low mid-capture latches hapticd's estop fault,
-                drops AMP_EN, and the stored capture says "fault: estop"
+                drops AMP_EN and LED_STATUS, and the stored capture says
+                "fault: estop"
   estop_clear   released and cleared, the fault list is empty again
   amp_comms     the Modbus simulator killed mid-capture latches amp_comms and
                 the stored capture says so; cleared once it is back
@@ -65,13 +69,17 @@ STIMULUS = "swept_sine.a=0 swept_sine.b=1.5 swept_sine.c=1 swept_sine.d=3"
 CAPTURE_SECONDS = 5
 CYCLICTEST_SECONDS = 30
 
-# Shell functions defined once in the guest's shell: a capture whose
-# capture_finished event is caught (the watcher subscribes before the
-# capture starts), in two halves so that a check can act in between.
+# Shell functions defined once in the guest's shell: an event caught by a
+# watcher that subscribes before whatever causes it (`watch_event NAME`, then
+# act, then `event_caught SECONDS`: the event's line, or nothing once SECONDS
+# have passed, so a missing event cannot hang the console); and a capture
+# whose capture_finished event is caught that way, in two halves so that a
+# check can act in between.
 GUEST_FUNCTIONS = r"""
-watch_capture() { rm -f /tmp/cf /tmp/cf.err; %(ctl)s --watch --events capture_finished --count 1 >/tmp/cf 2>/tmp/cf.err & WATCHER=$!; until grep -q watching /tmp/cf.err 2>/dev/null; do kill -0 $WATCHER 2>/dev/null || return 1; sleep 0.1; done; }
-start_capture() { watch_capture && %(ctl)s start_capture knob=%(knob)s %(stimulus)s "$@"; }
-capture_finished() { wait $WATCHER; cat /tmp/cf; }
+watch_event() { rm -f /tmp/ev /tmp/ev.err; %(ctl)s --watch --events "$1" --count 1 >/tmp/ev 2>/tmp/ev.err & WATCHER=$!; until grep -q watching /tmp/ev.err 2>/dev/null; do kill -0 $WATCHER 2>/dev/null || return 1; sleep 0.1; done; }
+event_caught() { n=$(( $1 * 10 )); while [ $n -gt 0 ] && kill -0 $WATCHER 2>/dev/null; do sleep 0.1; n=$(( n - 1 )); done; { kill $WATCHER; wait $WATCHER; } 2>/dev/null; cat /tmp/ev; }
+start_capture() { watch_event capture_finished && %(ctl)s start_capture knob=%(knob)s %(stimulus)s "$@"; }
+capture_finished() { event_caught "$1"; }
 """ % {"ctl": CTL, "knob": KNOB, "stimulus": STIMULUS}
 
 
@@ -301,6 +309,7 @@ def first_boot(boot, args, report, check):
     guarded("daq_modules", check_daq_modules, con, report, check)
     guarded("cyclictest", run_cyclictest, con, report, check)
     guarded("amp_enabled", check_amp_enabled, con, check)
+    guarded("capture_button", check_capture_button, con, report, check)
     capture_id = guarded("capture", check_capture, con, report, check)
     if capture_id is not None:
         guarded("fit", check_fit, con, report, check, capture_id)
@@ -469,11 +478,38 @@ def check_amp_enabled(con, check):
     con.run(f"{CTL} set_mode mode=idle >/dev/null")
 
 
-def finished_event(con, timeout):
-    """The capture_finished event the guest's watcher caught."""
-    rc, out = con.run("capture_finished", timeout=timeout)
+def caught_event(con, command, seconds):
+    """The data of the event the guest's watcher caught ({} if none came)."""
+    rc, out = con.run(f"{command} {int(seconds)}", timeout=seconds + 60)
     event = parse_json(out)
     return event.get("data", {}) if event else {}
+
+
+def finished_event(con, timeout):
+    """The capture_finished event the guest's watcher caught."""
+    return caught_event(con, "capture_finished", timeout)
+
+
+def check_capture_button(con, report, check):
+    """The status LED lit while idle; then the footswitch (active low, held
+    up by hapticd's pull-up request) pressed for 0.2 s and released: one
+    capture_button event, counted in get_state, and nothing started."""
+    rc, out = con.run(f"{LINE} LED_STATUS && {CTL} get_state")
+    before = parse_json(out) or {}
+    led_idle = out.strip().splitlines()[:1]
+    rc, out = con.run(f"watch_event capture_button && {LINE} FOOTSW pull-down && sleep 0.2 && "
+                      f"{LINE} FOOTSW pull-up")
+    event = caught_event(con, "event_caught", 30)  # also ends the watcher if the press failed
+    rc2, out = con.run(f"{CTL} get_state")
+    after = parse_json(out) or {}
+    report["capture_button"] = {"led_idle": led_idle, "state_before": before, "event": event,
+                                "state_after": after}
+    presses = before.get("capture_button_presses")
+    check("capture_button", led_idle == ["1"] and before.get("mode") == "idle" and rc == 0 and
+          presses is not None and event.get("new") == 1 and event.get("presses") == presses + 1 and
+          after.get("capture_button_presses") == presses + 1 and after.get("recording") is False,
+          f"LED_STATUS {led_idle} while {before.get('mode')}; press → event {event}; get_state then counts "
+          f"{after.get('capture_button_presses')} presses, recording {after.get('recording')}")
 
 
 def stored_capture(con, capture_id):
@@ -535,18 +571,22 @@ def check_estop(con, report, check):
     must empty the fault list."""
     rc, out = con.run(f"start_capture seconds=120 >/dev/null && sleep 2 && {LINE} AMP_EN")
     amp_before = out.strip().splitlines()[-1:]
-    rc, out = con.run(f"{LINE} ESTOP_N pull-down && sleep 1 && {LINE} AMP_EN && {CTL} get_state")
+    rc, out = con.run(f"{LINE} ESTOP_N pull-down && sleep 1 && {LINE} AMP_EN && {LINE} LED_STATUS && "
+                      f"{CTL} get_state")
     lines = out.strip().splitlines()
     state = parse_json(out) or {}
     amp_after = lines[0] if lines else None
+    led_after = lines[1] if len(lines) > 1 else None
     event = finished_event(con, timeout=60)
     row = stored_capture(con, event["capture_id"]) if "capture_id" in event else {}
-    report["estop"] = {"state": state, "event": event, "stored": row}
+    report["estop"] = {"state": state, "event": event, "stored": row, "led_status": led_after}
     check("estop", amp_before == ["1"] and "estop" in state.get("faults", []) and amp_after == "0"
+          and led_after == "0"
           and event.get("end_reason") == "fault: estop" and row.get("status") == "incomplete"
           and row.get("end_reason") == "fault: estop",
-          f"AMP_EN {amp_before} while capturing, then faults {state.get('faults')}, AMP_EN {amp_after}; "
-          f"capture {event.get('capture_id')} stored {row.get('status')} ({row.get('end_reason')})", "estop_ok")
+          f"AMP_EN {amp_before} while capturing, then faults {state.get('faults')}, AMP_EN {amp_after}, "
+          f"LED_STATUS {led_after}; capture {event.get('capture_id')} stored {row.get('status')} "
+          f"({row.get('end_reason')})", "estop_ok")
 
     # clear_fault's reply may predate the loop's next cycle, which does the
     # clearing: the state a moment later says whether it took.

@@ -189,5 +189,26 @@ TEST(Core, EnteringRenderDoesNotRestartTheVelocityEstimate) {
   EXPECT_NEAR(rec.sample.omega, 2.0, 0.05);
 }
 
+// The button's count passes through to state(); the core starts nothing on a
+// press (the front-end decides what one means).
+TEST(Core, PublishesCaptureButtonPressesAndActsOnNone) {
+  capture::SimDaq daq(plant("moderate-detents"), 10000.0);
+  HapticCore core(config(daq));
+  CycleContext ctx;
+  LoopRecord rec;
+  capture::DaqOutputs out;
+  for (int i = 0; i < 100; ++i) {
+    capture::DaqInputs in;
+    (void)daq.read(in);
+    ctx.lines.capture_presses = static_cast<std::uint64_t>(i / 10);  // a press every 10 cycles
+    ctx.lines.capture_button = i % 10 < 5;
+    core.cycle(in, ctx, out, rec);
+    ASSERT_EQ(core.state().button_presses, static_cast<std::uint64_t>(i / 10)) << i;
+    ASSERT_EQ(rec.mode, Mode::Idle) << i;
+    ASSERT_EQ(rec.recording_id, 0u) << i;
+    ASSERT_FALSE(out.amp_enable) << i;
+  }
+}
+
 }  // namespace
 }  // namespace knoblab::hapticd

@@ -1,7 +1,8 @@
 // HapticCore::cycle runs in the realtime loop: whatever the mode, whatever
 // command arrives, it must never allocate. Every global operator new is
-// counted while a flag is up, around cycle() only (posting a command is the
-// non-realtime side's business).
+// counted while a flag is up, around cycle() and the status LED's level
+// (what the daemon's loop does with the record) only; posting a command is
+// the non-realtime side's business.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -9,6 +10,7 @@
 
 #include "alloc_counter.hpp"
 #include "core_harness.hpp"
+#include "knoblab/hapticd/status_led.hpp"
 
 using knoblab::test::g_allocations;
 using knoblab::test::g_counting;
@@ -30,6 +32,7 @@ class Rig : public CoreHarness {
       LoopRecord rec;
       g_counting = true;
       core().cycle(in, context, out, rec);
+      (void)status_led(rec, kRate);
       g_counting = false;
       (void)daq().write(out);
     }

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "knoblab/capture/sim_daq.hpp"
+#include "knoblab/control/client.hpp"
 #include "knoblab/hal/memory_lines.hpp"
 #include "knoblab/hapticd/daemon.hpp"
 #include "knoblab/sim/presets.hpp"
@@ -25,7 +26,8 @@ struct Rig {
   std::thread loop;
   rt::LoopResult timing;
 
-  Rig(const std::filesystem::path& db, const char* knob) {
+  // With `socket`, hapticd's control server listens there.
+  Rig(const std::filesystem::path& db, const char* knob, const std::string& socket = {}) {
     sim::PlantConfig plant;
     plant.knob = *sim::presets::knob(knob);
     plant.initial_angle = 0.13;  // on a detent flank, so rendering pushes
@@ -35,6 +37,7 @@ struct Rig {
     cfg.core.calibration = daq->calibration();
     cfg.db = db;
     cfg.knob = knob;
+    cfg.socket_path = socket;
     shared_host::configure(cfg);
     auto l = std::make_unique<hal::MemoryLines>(false);
     lines = l.get();
@@ -144,6 +147,106 @@ TEST(Daemon, EstopMidRenderIsVisibleInTheRecordedSamples) {
     ASSERT_FALSE(c.flags[i] & interchange::kAmpEnabled) << i;
     ASSERT_TRUE(c.flags[i] & interchange::kFaultLatched) << i;
   }
+}
+
+template <typename What>
+bool eventually(What what, std::chrono::milliseconds timeout = std::chrono::milliseconds(5000)) {
+  const auto end = std::chrono::steady_clock::now() + timeout;
+  while (!what()) {
+    if (std::chrono::steady_clock::now() > end) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return true;
+}
+
+// The capture button as the kiosk sees it: each press a capture_button event
+// with the count since start and how many are new, the count in get_state,
+// and nothing started by hapticd itself.
+TEST(Daemon, CaptureButtonPressesReachASubscribedClientAndGetState) {
+  TempDb db;
+  const std::string socket = (db.dir / "h.sock").string();
+  Rig rig(db.path(), "moderate-detents", socket);
+  // run() opens the socket before the loop's first cycle.
+  ASSERT_TRUE(eventually([&] { return rig.daemon->core().state().cycles > 0; }));
+  control::Client c(socket, std::chrono::seconds(5));
+  c.hello();
+  c.call("subscribe", {{"events", {"capture_button"}}});
+  EXPECT_EQ(c.call("get_state").at("capture_button_presses"), 0);
+
+  rig.lines->click_capture_button();
+  auto e = c.wait_event(std::chrono::seconds(5));
+  ASSERT_TRUE(e.has_value());
+  EXPECT_EQ(e->name, "capture_button");
+  EXPECT_EQ(e->data, nlohmann::json({{"presses", 1}, {"new", 1}}));
+  rig.lines->click_capture_button();
+  e = c.wait_event(std::chrono::seconds(5));
+  ASSERT_TRUE(e.has_value());
+  EXPECT_EQ(e->data, nlohmann::json({{"presses", 2}, {"new", 1}}));
+
+  // Presses quicker than the events: however they are grouped, "new" adds
+  // up to the presses made and "presses" to the total.
+  for (int i = 0; i < 3; ++i) rig.lines->click_capture_button();
+  std::uint64_t added = 0, total = 2;
+  while (total < 5) {
+    e = c.wait_event(std::chrono::seconds(5));
+    ASSERT_TRUE(e.has_value()) << "after " << total << " presses";
+    added += e->data.at("new").get<std::uint64_t>();
+    total = e->data.at("presses").get<std::uint64_t>();
+  }
+  EXPECT_EQ(total, 5u);
+  EXPECT_EQ(added, 3u);
+  EXPECT_FALSE(c.wait_event(std::chrono::milliseconds(200)).has_value()) << "no press, no event";
+
+  const nlohmann::json state = c.call("get_state");
+  EXPECT_EQ(state.at("capture_button_presses"), 5);
+  EXPECT_EQ(state.at("mode"), "idle") << "a press starts nothing in hapticd";
+  EXPECT_EQ(state.at("recording"), false);
+}
+
+// Samples the LED every few milliseconds until `done` or `timeout`: how often
+// it was seen lit and dark.
+struct LedSeen {
+  int on = 0, off = 0;
+};
+template <typename Done>
+LedSeen watch_led(const hal::MemoryLines& lines, std::chrono::milliseconds timeout, Done done) {
+  LedSeen seen;
+  const auto end = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < end && !done(seen)) {
+    (lines.status_led() ? seen.on : seen.off)++;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return seen;
+}
+
+TEST(Daemon, StatusLedIsOnWhenReadyBlinksWhileACaptureRecordsAndIsOffAfterTheEstop) {
+  TempDb db;
+  Rig rig(db.path(), "moderate-detents");
+  ASSERT_TRUE(eventually([&] { return rig.daemon->core().state().cycles > 100; }));
+  const auto never = [](const LedSeen&) { return false; };
+  LedSeen idle = watch_led(*rig.lines, std::chrono::milliseconds(300), never);
+  EXPECT_GT(idle.on, 0);
+  EXPECT_EQ(idle.off, 0) << "steady on while idle";
+
+  capture::CaptureConfig cc;
+  std::string why;
+  ASSERT_TRUE(rig.daemon->start_capture(cc, 30.0, "moderate-detents", why)) << why;
+  ASSERT_TRUE(eventually([&] { return rig.daemon->core().state().mode == Mode::Capture; }));
+  // About a second (two blinks at 2 Hz); longer if the loop runs late here.
+  const LedSeen capturing = watch_led(*rig.lines, std::chrono::seconds(5), [&](const LedSeen& s) {
+    return s.on + s.off >= 200 && s.on > 20 && s.off > 20;
+  });
+  EXPECT_GT(capturing.on, 20) << "lit part of the time while capturing";
+  EXPECT_GT(capturing.off, 20) << "dark part of the time while capturing";
+  EXPECT_EQ(rig.daemon->core().state().mode, Mode::Capture);
+
+  rig.lines->press_estop();
+  ASSERT_TRUE(eventually([&] { return (rig.daemon->core().state().faults & kFaultEstop) != 0; }));
+  std::this_thread::sleep_for(std::chrono::milliseconds(5));  // past the cycle that latched it, LED written
+  const LedSeen estop = watch_led(*rig.lines, std::chrono::milliseconds(600), never);
+  EXPECT_EQ(estop.on, 0) << "off while the e-stop is latched";
+  EXPECT_GT(estop.off, 0);
+  ASSERT_EQ(rig.wait_finished(std::chrono::seconds(10)).size(), 1u);  // the capture, cut by the fault
 }
 
 }  // namespace

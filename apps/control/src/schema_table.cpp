@@ -259,8 +259,8 @@ constexpr std::array kModeArgs = {choice("mode", kRequired, kModes, "daemon mode
 // subscribe
 constexpr std::array<std::string_view, kEventNames.size() + 1> kSubscribable = {
     kEventNames[0], kEventNames[1], kEventNames[2], kEventNames[3],
-    kEventNames[4], kEventNames[5], kEventNames[6], "*"};
-static_assert(kEventNames.size() == 7, "list every event in kSubscribable");
+    kEventNames[4], kEventNames[5], kEventNames[6], kEventNames[7], "*"};
+static_assert(kEventNames.size() == 8, "list every event in kSubscribable");
 constexpr std::array kSubscribeArgs = {
     choice_list("events", kRequired, {0, kSubscribable.size()}, kSubscribable,
                 "events to receive from now on (replaces the previous set; \"*\" = all)"),

@@ -102,6 +102,7 @@ json ControlHandler::state_json() const {
   j["faults"] = fault_names(s.faults);
   j["recording"] = s.recording_id != 0;
   j["cycles"] = s.cycles;
+  j["capture_button_presses"] = s.button_presses;
   j["rate_hz"] = daemon_.config().core.rate_hz;
   j["modbus"] = modbus::status::describe(daemon_.modbus_status());
   j["ring_dropped"] = daemon_.ring_dropped();
@@ -341,6 +342,12 @@ void ControlHandler::publish_events(control::Server& server, const std::vector<F
     server.publish({"state", state_json()});
   }
   last_mode_ = static_cast<int>(s.mode);
+  // Presses are only reported: what one means (start a capture, go on to the
+  // next step) is up to the front-end, which knows the knob and labels.
+  if (s.button_presses > last_presses_) {
+    server.publish({"capture_button", {{"presses", s.button_presses}, {"new", s.button_presses - last_presses_}}});
+    last_presses_ = s.button_presses;
+  }
   for (control::Event& e : pending_trial_events_) server.publish(std::move(e));
   pending_trial_events_.clear();
   for (const FinishedRecording& f : finished) {

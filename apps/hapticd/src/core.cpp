@@ -52,6 +52,7 @@ CoreState HapticCore::state() const {
   s.faults = static_cast<std::uint32_t>((p >> 8) & 0xffffff);
   s.recording_id = static_cast<std::uint32_t>(p >> 32);
   s.cycles = published_cycles_.load(std::memory_order_relaxed);
+  s.button_presses = published_presses_.load(std::memory_order_relaxed);
   return s;
 }
 
@@ -215,6 +216,7 @@ void HapticCore::cycle(const capture::DaqInputs& in, const CycleContext& ctx, ca
                                (static_cast<std::uint64_t>(recording_) << 32);
   published_.store(packed, std::memory_order_release);
   published_cycles_.store(cycles_, std::memory_order_relaxed);
+  published_presses_.store(ctx.lines.capture_presses, std::memory_order_relaxed);
 }
 
 }  // namespace knoblab::hapticd

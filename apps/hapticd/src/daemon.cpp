@@ -10,6 +10,7 @@
 #include "knoblab/control/telemetry_writer.hpp"
 #include "knoblab/hapticd/calibration_file.hpp"
 #include "knoblab/hapticd/control_handler.hpp"
+#include "knoblab/hapticd/status_led.hpp"
 #include "knoblab/modbus/status_bits.hpp"
 #include "knoblab/rt/os.hpp"
 #include "knoblab/rt/spsc_ring.hpp"
@@ -463,6 +464,7 @@ rt::LoopResult Daemon::run() {
   RecordRing& ring = *impl_->ring;
   const std::atomic<std::uint32_t>* amp_status = poller_ ? &poller_->status_word() : nullptr;
   bool writes_ok = true;  // the previous cycle's writes, judged in this cycle
+  const double rate_hz = cfg_.core.rate_hz;
 
   return rt::run(
       cfg_.loop,
@@ -473,7 +475,7 @@ rt::LoopResult Daemon::run() {
           const bool daq_ok = daq.read(in) == capture::IoStatus::ok;
           const bool lines_ok = lines.read(din) == capture::IoStatus::ok;
           CycleContext ctx;
-          ctx.lines = {din.estop, din.capture_button};
+          ctx.lines = {din.estop, din.capture_button, din.capture_presses};
           ctx.consecutive_overruns = info.consecutive_overruns;
           ctx.external_faults = amp_status ? faults_from_modbus(amp_status->load(std::memory_order_acquire)) : 0u;
           ctx.io_ok = daq_ok && lines_ok && writes_ok;
@@ -482,8 +484,7 @@ rt::LoopResult Daemon::run() {
           core.cycle(in, ctx, out, rec);
           const bool daq_written = daq.write(out) == capture::IoStatus::ok;
           const bool lines_written =
-              lines.write({out.amp_enable, (rec.sample.flags & interchange::kFaultLatched) == 0}) ==
-              capture::IoStatus::ok;
+              lines.write({out.amp_enable, status_led(rec, rate_hz)}) == capture::IoStatus::ok;
           writes_ok = daq_written && lines_written;
           rec.now_ns = info.now_ns;
           ring.try_push(rec);

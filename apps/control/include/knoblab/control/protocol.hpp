@@ -52,9 +52,9 @@ std::optional<Command> command_from_string(std::string_view name) noexcept;
 bool handled_by_server(Command command) noexcept;
 
 // Event names a client can subscribe to ("*" subscribes to all).
-inline constexpr std::array<std::string_view, 7> kEventNames = {
+inline constexpr std::array<std::string_view, 8> kEventNames = {
     "state", "fault_latched", "capture_finished", "trial", "calibration_finished",
-    "stats", "watchdog_expired"};
+    "stats", "watchdog_expired", "capture_button"};
 std::optional<std::size_t> event_index(std::string_view name) noexcept;
 
 }  // namespace knoblab::control

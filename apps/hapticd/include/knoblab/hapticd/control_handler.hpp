@@ -54,6 +54,7 @@ class ControlHandler final : public control::CommandHandler {
   std::mutex mutex_;         // handle() and publish_events() run on different threads
   RenderParams params_{};    // the last model sent to the loop
   std::uint32_t last_faults_ = 0;
+  std::uint64_t last_presses_ = 0;  // capture-button presses already published
   std::uint32_t trial_id_ = 0;  // the running trial's recording (0: none)
   nlohmann::json trial_;        // its study, participant, condition
   std::vector<control::Event> pending_trial_events_;  // published by the writer thread

@@ -50,6 +50,7 @@ const char* to_string(Mode m);
 struct LineInputs {
   bool estop = false;
   bool capture_button = false;
+  std::uint64_t capture_presses = 0;  // since start (the lines count them, debounced)
 };
 
 // What non-realtime code asks of the loop. Trivially copyable: it travels
@@ -108,6 +109,9 @@ struct CoreState {
   std::uint32_t faults = 0;        // latched Fault bits
   std::uint32_t recording_id = 0;  // 0 when not recording
   std::int64_t cycles = 0;
+  // Capture-button presses since start. Only counted here: what a press
+  // means is the front-end's choice (the control handler publishes it).
+  std::uint64_t button_presses = 0;
 };
 
 struct CoreConfig {
@@ -174,6 +178,7 @@ class HapticCore {
   std::int64_t cycles_ = 0;
   std::atomic<std::uint64_t> published_{0};  // mode | faults | recording, see state()
   std::atomic<std::int64_t> published_cycles_{0};
+  std::atomic<std::uint64_t> published_presses_{0};
 };
 
 }  // namespace knoblab::hapticd
