@@ -28,5 +28,5 @@ set(CPACK_COMPONENT_UI_DESCRIPTION "knoblab touchscreen front-end (Qt 6 Quick ki
 # libraries): Qt Quick's modules, the framebuffer platform plugin, a font, and
 # the knoblab command that runs fits and discrepancy.
 set(CPACK_DEBIAN_UI_PACKAGE_DEPENDS
-    "knoblab-cli, qml6-module-qtquick, qml6-module-qtquick-controls, qml6-module-qtquick-layouts, qml6-module-qtquick-templates, qml6-module-qtquick-window, qml6-module-qtqml-workerscript, qt6-qpa-plugins, fonts-dejavu-core")
+    "knoblab-cli, qml6-module-qtquick, qml6-module-qtquick-controls, qml6-module-qtquick-layouts, qml6-module-qtquick-templates, qml6-module-qtquick-window, qml6-module-qtqml-workerscript, qml6-module-qtquick-virtualkeyboard, qt6-virtualkeyboard-plugin, qt6-svg-plugins, hunspell-en-gb, hunspell-en-us, qt6-qpa-plugins, fonts-dejavu-core")
 include(CPack)

@@ -64,6 +64,14 @@ TEST_P(Screens, RenderWholeWithTheLoopRunning) {
     const test::RunResult r = test::run_knoblab(args);
     ASSERT_EQ(r.exit_code, 0) << args[0] << ": " << r.err;
   }
+  // Comparing takes a second knob: one with detents a tenth as strong.
+  if (screen == "compare")
+    for (const std::vector<std::string>& args :
+         {std::vector<std::string>{"simulate", "--knob", "subtle-detents", "--seconds", "3", "--db", daemon.db()},
+          std::vector<std::string>{"fit", "--capture", "2", "--db", daemon.db()}}) {
+      const test::RunResult r = test::run_knoblab(args);
+      ASSERT_EQ(r.exit_code, 0) << args[0] << ": " << r.err;
+    }
   std::filesystem::create_directories(KNOBLAB_UI_SCREENS_DIR);
   const std::filesystem::path png = std::filesystem::path(KNOBLAB_UI_SCREENS_DIR) / (screen + "-" + size + ".png");
   std::filesystem::remove(png);
@@ -81,6 +89,14 @@ TEST_P(Screens, RenderWholeWithTheLoopRunning) {
     EXPECT_EQ(named(s.out, "reviewTitle"), "moderate-detents · capture 1") << s.out;
     EXPECT_EQ(named(s.out, "reviewEmpty"), "") << s.out;
   }
+  if (screen == "compare") {
+    // The two newest, A the newer; their detents told apart, as `knoblab compare` tells them.
+    EXPECT_EQ(named(s.out, "compareA"), "A  subtle-detents · capture 2") << s.out;
+    EXPECT_EQ(named(s.out, "compareB"), "B  moderate-detents · capture 1") << s.out;
+    EXPECT_EQ(named(s.out, "compare.b.A_pos"), "11.0 mN·m") << s.out;
+    EXPECT_EQ(named(s.out, "overlap.A_pos"), "apart") << s.out;
+    EXPECT_NE(named(s.out, "compareVerdict").find("detent amplitude A"), std::string::npos) << s.out;
+  }
   if (screen == "library") {
     EXPECT_EQ(named(s.out, "knobTitle"), "moderate-detents") << s.out;
     EXPECT_EQ(named(s.out, "param.A_pos"), "11.0 mN·m") << s.out;  // the simulated knob's 11 mN·m detents
@@ -88,7 +104,7 @@ TEST_P(Screens, RenderWholeWithTheLoopRunning) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AtPanelSizes, Screens,
-                         ::testing::Combine(::testing::Values("home", "system", "library", "review"),
+                         ::testing::Combine(::testing::Values("home", "system", "library", "review", "compare"),
                                             ::testing::Values("1024x600", "1280x800")),
                          [](const auto& p) {
                            std::string name = std::get<0>(p.param) + "_" + std::get<1>(p.param);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <QGuiApplication>
+#include <QInputMethod>
 #include <QElapsedTimer>
 #include <QJSEngine>
 #include <QQmlApplicationEngine>
@@ -45,6 +46,18 @@ QQuickItem* find(QQuickItem* root, const QString& name) {
   if (root->objectName() == name) return root;
   for (QQuickItem* child : root->childItems())
     if (QQuickItem* hit = find(child, name)) return hit;
+  return nullptr;
+}
+
+// A key of the on-screen keyboard by its label (Qt Virtual Keyboard's keys
+// have no object names; they carry their letter as `text`).
+QQuickItem* find_key(QQuickItem* root, const QString& label) {
+  if (!root || !root->isVisible()) return nullptr;
+  if (QString(root->metaObject()->className()).contains(QStringLiteral("Key")) &&
+      root->property("text").toString() == label && root->width() > 0)
+    return root;
+  for (QQuickItem* child : root->childItems())
+    if (QQuickItem* hit = find_key(child, label)) return hit;
   return nullptr;
 }
 
@@ -104,6 +117,17 @@ class Screen {
   void type(const QString& name, const QString& text) const {
     if (QQuickItem* i = item(name + ".input")) i->setProperty("text", text);
   }
+  // Letters typed on the on-screen keyboard, key by key; false when a key is missing.
+  bool type_on_keyboard(const QString& letters) const {
+    for (const QChar c : letters) {
+      QQuickItem* key = find_key(window_->contentItem(), QString(c));
+      if (!key) return false;
+      const QPointF at = key->mapToScene(QPointF(key->width() / 2, key->height() / 2));
+      QTest::mouseClick(window_, Qt::LeftButton, Qt::NoModifier, at.toPoint());
+      wait(150);
+    }
+    return true;
+  }
 
  private:
   QQuickWindow* window_;
@@ -156,10 +180,20 @@ TEST_P(CaptureWizard, DrivenByTouchItCapturesFitsFindsAndStoresWhatTheCliWould) 
   ASSERT_TRUE(screen.tap("next"));
   // The knob and its gripper.
   ASSERT_TRUE(spin_until([&] { return screen.shows("knobName.input"); }));
+  // A tap on the field brings up the on-screen keyboard, and its keys type.
+  ASSERT_TRUE(screen.tap("knobName.input"));
+  ASSERT_TRUE(spin_until([&] { return screen.item("keyboard") && screen.item("keyboard")->property("active").toBool(); }))
+      << "no on-screen keyboard: field focused " << screen.item("knobName.input")->hasActiveFocus() << ", input method visible "
+      << QGuiApplication::inputMethod()->isVisible() << ", keyboard item " << (screen.item("keyboard") != nullptr)
+      << ", platform input context " << (QGuiApplication::platformName().toStdString());
+  ASSERT_TRUE(screen.type_on_keyboard("knob"));
+  EXPECT_EQ(screen.text("knobName.input"), "knob");
   screen.type("knobName", "wizard-knob");
   screen.type("gripper", "ABS print, VHB tape");
   screen.shoot("capture-2-knob-" + size);
   ASSERT_TRUE(spin_until([&] { return screen.tap("next"); }));
+  // Off the form, the keyboard goes down again.
+  EXPECT_TRUE(spin_until([&] { return !screen.shows("keyboard"); }, 5000));
   // The sensor check (Table 4) runs and reports.
   ASSERT_TRUE(spin_until([&] { return screen.tap("verifySensors"); }));
   ASSERT_TRUE(spin_until([&] { return screen.shows("table4.theta"); })) << messages.join(" | ").toStdString();
@@ -168,8 +202,13 @@ TEST_P(CaptureWizard, DrivenByTouchItCapturesFitsFindsAndStoresWhatTheCliWould) 
   ASSERT_TRUE(spin_until([&] { return link.mode() == "idle"; }));
   screen.shoot("capture-3-sensors-" + size);
   ASSERT_TRUE(screen.tap("next"));
-  // The capture, with the angle and torque live.
-  ASSERT_TRUE(spin_until([&] { return screen.tap("startCapture"); }));
+  // The capture, with the angle and torque live, started as in the field by
+  // the camera's capture button: hapticd's `capture_button` event.
+  ASSERT_TRUE(spin_until([&] { return screen.shows("startCapture"); }));
+  Screen::wait(300);
+  emit link.event("capture_button", {{"presses", 1}, {"new", 1}});
+  ASSERT_TRUE(spin_until([&] { return link.mode() == "capture"; })) << messages.join(" | ").toStdString();
+  EXPECT_EQ(screen.text("startCapture"), "Capturing…");
   ASSERT_TRUE(spin_until([&] { return screen.item("angleTrace") && screen.item("angleTrace")->property("drawn").toInt() > 100; }))
       << "no live angle trace";
   EXPECT_GT(screen.item("torqueTrace")->property("drawn").toInt(), 100);
@@ -259,6 +298,7 @@ int main(int argc, char** argv) {
   // Offscreen, the software renderer: no display needed, the same pixels anywhere.
   qputenv("QT_QPA_PLATFORM", "offscreen");
   qputenv("QT_QUICK_BACKEND", "software");
+  qputenv("QT_IM_MODULE", "qtvirtualkeyboard");  // as knoblab-ui selects it
   qInstallMessageHandler(knoblab::ui::keep_warnings);
   QGuiApplication app(argc, argv);
   ::testing::InitGoogleTest(&argc, argv);

@@ -6,6 +6,7 @@ pragma ComponentBehavior: Bound
 import QtQuick
 import QtQuick.Layouts
 import "format.mjs" as Format
+import "wizard.mjs" as Wizard
 
 Item {
     id: wizard
@@ -14,6 +15,8 @@ Item {
     required property JobRunner jobs
     required property TelemetryFeed feed
     signal openLibrary(int captureId)
+    // The on-screen keyboard is up (Main's InputPanel).
+    property bool keyboardUp: false
 
     readonly property var steps: ["Mounting", "Knob", "Sensors", "Capture", "Results"]
     property int step: 0
@@ -31,6 +34,9 @@ Item {
     property real startedAt: 0
     property real elapsed: 0
 
+    // A new step takes the focus from the form: the on-screen keyboard goes down.
+    onStepChanged: wizard.forceActiveFocus()
+
     function startCapture() {
         wizard.feed.clear();
         wizard.phase = "running";
@@ -47,6 +53,18 @@ Item {
             args.notes = notesField.text.trim();
         wizard.link.request("start_capture", args);
     }
+    // The camera's capture button (hapticd's `capture_button` event): at the
+    // capture step it starts the capture; on the results, another one with
+    // the same labels; elsewhere the message bar says why not.
+    function buttonPressed() {
+        const action = Wizard.buttonAction(wizard.step, wizard.phase, knobField.text.trim() !== "");
+        if (action === "start" || action === "again") {
+            wizard.step = 3;
+            wizard.startCapture();
+        } else {
+            wizard.link.message("capture button: " + action, "info");
+        }
+    }
     function runGravity() {
         wizard.gravityState = "running";
         wizard.link.request("calibrate", { kind: "gravity" });
@@ -62,7 +80,9 @@ Item {
     Connections {
         target: wizard.link
         function onEvent(name: string, data: var) {
-            if (name === "capture_finished" && data.kind === "stimulus" && wizard.phase === "running") {
+            if (name === "capture_button") {
+                wizard.buttonPressed();
+            } else if (name === "capture_finished" && data.kind === "stimulus" && wizard.phase === "running") {
                 wizard.captureId = data.capture_id;
                 wizard.knobs.refresh();
                 if (data.complete) {
@@ -118,9 +138,11 @@ Item {
         anchors.margins: Theme.gap
         spacing: Theme.gap
 
-        // Where the wizard is: the steps, the current one lit.
+        // Where the wizard is: the steps, the current one lit (not while the
+        // keyboard is up: the form needs the room).
         RowLayout {
             Layout.fillWidth: true
+            visible: !wizard.keyboardUp
             spacing: Theme.gap / 2
             Repeater {
                 model: wizard.steps
@@ -147,6 +169,8 @@ Item {
         StackLayout {
             Layout.fillWidth: true
             Layout.fillHeight: true
+            // Only the shown step needs room, and the form scrolls.
+            Layout.minimumHeight: 0
             currentIndex: wizard.step
 
             // 1 Mounting
@@ -205,33 +229,54 @@ Item {
                 }
             }
 
-            // 2 Knob
-            ColumnLayout {
-                spacing: Theme.gap
-                LabeledField {
-                    id: knobField
-                    objectName: "knobName"
-                    Layout.fillWidth: true
-                    label: "Knob name (the library keeps captures under it)"
-                    placeholder: "e.g. fan-speed, car radio volume"
+            // 2 Knob: a form that scrolls, so that the field being typed in
+            // stays in sight above the on-screen keyboard.
+            Flickable {
+                id: form
+                clip: true
+                contentHeight: fields.implicitHeight
+                function keepInSight() {
+                    for (const f of [knobField, gripperField, notesField]) {
+                        if (!f.typing)
+                            continue;
+                        const top = f.y, bottom = f.y + f.height;
+                        if (top < form.contentY)
+                            form.contentY = top;
+                        else if (bottom > form.contentY + form.height)
+                            form.contentY = Math.min(bottom - form.height, Math.max(0, form.contentHeight - form.height));
+                    }
                 }
-                LabeledField {
-                    id: gripperField
-                    objectName: "gripper"
-                    Layout.fillWidth: true
-                    maximumLength: 128
-                    label: "Gripper"
-                    placeholder: "e.g. ABS print, VHB tape"
-                }
-                LabeledField {
-                    id: notesField
-                    objectName: "notes"
-                    Layout.fillWidth: true
-                    maximumLength: 512
-                    label: "Notes"
-                }
-                Item {
-                    Layout.fillHeight: true
+                onHeightChanged: keepInSight()
+                ColumnLayout {
+                    id: fields
+                    width: form.width
+                    spacing: Theme.gap
+                    LabeledField {
+                        id: knobField
+                        objectName: "knobName"
+                        Layout.fillWidth: true
+                        label: "Knob name (the library keeps captures under it)"
+                        inputMethodHints: Qt.ImhNoAutoUppercase | Qt.ImhNoPredictiveText
+                        placeholder: "e.g. fan-speed, car radio volume"
+                        onTypingChanged: form.keepInSight()
+                    }
+                    LabeledField {
+                        id: gripperField
+                        objectName: "gripper"
+                        Layout.fillWidth: true
+                        maximumLength: 128
+                        label: "Gripper"
+                        placeholder: "e.g. ABS print, VHB tape"
+                        onTypingChanged: form.keepInSight()
+                    }
+                    LabeledField {
+                        id: notesField
+                        objectName: "notes"
+                        Layout.fillWidth: true
+                        maximumLength: 512
+                        label: "Notes"
+                        onTypingChanged: form.keepInSight()
+                    }
                 }
             }
 
@@ -299,7 +344,7 @@ Item {
                         text: knobField.text.trim() === "" ? "Name the knob first (step 2)."
                               : wizard.phase === "running" ? "Swept sine (Table 3): " + wizard.elapsed.toFixed(1) + " of " + wizard.seconds + " s"
                               : wizard.phase === "failed" ? "The capture did not complete; see the message bar."
-                              : "Swept sine (Table 3), " + wizard.seconds + " s, ±" + (wizard.sweep.c * 180 / Math.PI).toFixed(0) + "° about where the knob is."
+                              : "Swept sine (Table 3), " + wizard.seconds + " s, ±" + (wizard.sweep.c * 180 / Math.PI).toFixed(0) + "° about where the knob is. Tap Start, or press the capture button on the camera."
                         color: wizard.phase === "failed" ? Theme.bad : Theme.muted
                         font.pixelSize: Theme.fontBody
                     }
@@ -359,11 +404,29 @@ Item {
                         entry: wizard.entry !== null && wizard.entry.capture_id !== undefined ? wizard.entry : null
                         Layout.fillWidth: true
                     }
-                    ActionButton {
-                        objectName: "openLibrary"
+                    Flow {
+                        Layout.fillWidth: true
+                        spacing: Theme.gap
+                        visible: wizard.phase === "done" || wizard.phase === "failed"
+                        ActionButton {
+                            objectName: "openLibrary"
+                            visible: wizard.phase === "done"
+                            text: "Open in the library"
+                            onActivated: wizard.openLibrary(wizard.captureId)
+                        }
+                        ActionButton {
+                            objectName: "captureAgain"
+                            text: "Capture again"
+                            onActivated: wizard.buttonPressed()
+                        }
+                    }
+                    Text {
                         visible: wizard.phase === "done"
-                        text: "Open in the library"
-                        onActivated: wizard.openLibrary(wizard.captureId)
+                        Layout.fillWidth: true
+                        wrapMode: Text.WordWrap
+                        text: "The capture button on the camera captures again too, with the same knob, gripper and notes."
+                        color: Theme.muted
+                        font.pixelSize: Theme.fontSmall
                     }
                 }
             }

@@ -10,6 +10,9 @@ ColumnLayout {
     property alias text: input.text
     property alias placeholder: input.placeholderText
     property int maximumLength: 64
+    property alias inputMethodHints: input.inputMethodHints
+    // Being typed in (a form scrolls it into sight above the keyboard).
+    readonly property bool typing: input.activeFocus
     spacing: 4
 
     Text {

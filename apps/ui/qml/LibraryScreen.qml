@@ -13,6 +13,9 @@ Item {
     required property JobRunner jobs
     required property DaemonLink link
     signal review(int captureId)
+    signal compare(int captureA, int captureB)
+    // "Compare with…" tapped: the next knob tapped in the list is B.
+    property bool picking: false
     // The capture shown on the right (0: the newest).
     property int captureId: 0
     readonly property var entry: {
@@ -113,7 +116,14 @@ Item {
                         }
                     }
                     TapHandler {
-                        onTapped: library.captureId = row.modelData.capture_id
+                        onTapped: {
+                            if (library.picking && !row.chosen) {
+                                library.picking = false;
+                                library.compare(library.entry.capture_id, row.modelData.capture_id);
+                            } else {
+                                library.captureId = row.modelData.capture_id;
+                            }
+                        }
                     }
                 }
             }
@@ -181,11 +191,31 @@ Item {
                         font.pixelSize: Theme.fontSmall
                     }
                 }
-                ActionButton {
-                    objectName: "reviewButton"
-                    visible: library.entry !== null && (library.entry.fit !== null || library.entry.discrepancy !== null)
-                    text: "Review the plots"
-                    onActivated: library.review(library.entry.capture_id)
+                Flow {
+                    Layout.fillWidth: true
+                    spacing: Theme.gap
+                    ActionButton {
+                        objectName: "reviewButton"
+                        visible: library.entry !== null && (library.entry.fit !== null || library.entry.discrepancy !== null)
+                        text: "Review the plots"
+                        onActivated: library.review(library.entry.capture_id)
+                    }
+                    ActionButton {
+                        objectName: "compareButton"
+                        visible: library.knobs.entries.length > 1
+                        text: library.picking ? "Cancel compare" : "Compare with…"
+                        edge: library.picking ? Theme.warning : Theme.accent
+                        onActivated: library.picking = !library.picking
+                    }
+                }
+                Text {
+                    objectName: "compareHint"
+                    visible: library.picking
+                    Layout.fillWidth: true
+                    wrapMode: Text.WordWrap
+                    text: "Tap another knob in the list to compare it with this one."
+                    color: Theme.warning
+                    font.pixelSize: Theme.fontBody
                 }
                 JobProgress {
                     jobs: library.jobs

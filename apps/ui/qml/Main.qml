@@ -3,6 +3,7 @@ pragma ComponentBehavior: Bound
 // below it (home at the bottom), the message bar over them.
 import QtQuick
 import QtQuick.Controls
+import QtQuick.VirtualKeyboard
 
 ApplicationWindow {
     id: window
@@ -24,7 +25,8 @@ ApplicationWindow {
             system: systemScreen,
             library: libraryScreen,
             capture: captureScreen,
-            review: reviewScreen
+            review: reviewScreen,
+            compare: compareScreen
         })
 
     function open(name, properties) {
@@ -36,8 +38,12 @@ ApplicationWindow {
         stack.push(screen, properties !== undefined ? properties : {});
     }
     // The capture a screen opened with --screen shows first (the newest).
-    function newestCapture() {
+    function newestCapture(): int {
         return window.knobs.entries.length > 0 ? window.knobs.entries[0].capture_id : 0;
+    }
+    // The one before it (compare: the two newest, when opened with --screen).
+    function secondNewestCapture(): int {
+        return window.knobs.entries.length > 1 ? window.knobs.entries[1].capture_id : 0;
     }
 
     header: StatusStrip {
@@ -65,6 +71,7 @@ ApplicationWindow {
             knobs: window.knobs
             jobs: window.jobs
             feed: window.feed
+            keyboardUp: keyboard.active
             onOpenLibrary: captureId => {
                 stack.pop(null);
                 stack.push(libraryScreen, { captureId: captureId });
@@ -78,6 +85,16 @@ ApplicationWindow {
             jobs: window.jobs
             link: window.link
             onReview: captureId => window.open("review", { captureId: captureId })
+            onCompare: (a, b) => window.open("compare", { captureA: a, captureB: b })
+        }
+    }
+    Component {
+        id: compareScreen
+        CompareScreen {
+            knobs: window.knobs
+            jobs: window.jobs
+            captureA: window.newestCapture()
+            captureB: window.secondNewestCapture()
         }
     }
     Component {
@@ -95,8 +112,9 @@ ApplicationWindow {
         anchors.left: parent.left
         anchors.right: parent.right
         anchors.top: parent.top
-        anchors.bottom: bar.visible ? bar.top : parent.bottom
-        anchors.bottomMargin: bar.visible ? Theme.gap : 0
+        // Above the keyboard while it is up: the field being typed in stays in sight.
+        anchors.bottom: keyboard.active ? keyboard.top : bar.visible ? bar.top : parent.bottom
+        anchors.bottomMargin: bar.visible && !keyboard.active ? Theme.gap : 0
         initialItem: homeScreen
         Component.onCompleted: if (window.startScreen !== "home")
             window.open(window.startScreen)
@@ -109,6 +127,20 @@ ApplicationWindow {
         anchors.bottom: parent.bottom
         anchors.margins: Theme.gap
     }
+    // The on-screen keyboard (Qt Virtual Keyboard, in-app: knoblab-ui selects
+    // it as the input method) rises when a text field takes focus.
+    InputPanel {
+        id: keyboard
+        objectName: "keyboard"
+        z: 2
+        // Its height follows its width: on a wide, short panel a full-width
+        // keyboard would take half the screen.
+        width: Math.min(parent.width, parent.height * 1.6)
+        x: (parent.width - width) / 2
+        y: keyboard.active ? parent.height - keyboard.height : parent.height
+        visible: keyboard.active
+    }
+
     Connections {
         target: window.link
         function onMessage(text: string, level: string) {
@@ -131,6 +163,8 @@ ApplicationWindow {
             bar.show(text, level);
         }
         function onFinished(kind: string, captureId: int, ok: bool, result: var, error: string) {
+            if (kind === "compare")
+                return;  // nothing stored: the comparison screen shows it, or why not
             window.knobs.refresh();
             bar.show(ok ? kind + " of capture " + captureId + " stored" : kind + " of capture " + captureId + ": " + error,
                      ok ? "info" : "warning");

@@ -21,7 +21,6 @@ Item {
                           ["residual · time", "discrepancy", "residual_time"]] : [])
     property int chosen: 0
     readonly property var figure: chosen < figures.length ? figures[chosen] : null
-    property string value
 
     function load() {
         if (review.figure === null) {
@@ -30,7 +29,6 @@ Item {
         }
         const id = review.figure[1] === "fit" ? review.entry.fit.id : review.entry.discrepancy.id;
         plot.csv = review.knobs.resultFile(review.figure[1], id, review.figure[2] + ".csv");
-        review.value = "";
     }
     onFigureChanged: load()
     Component.onCompleted: load()
@@ -97,49 +95,11 @@ Item {
                 onActivated: plot.resetView()
             }
         }
-        FigureView {
+        FigurePane {
             id: plot
-            objectName: "figureView"
             Layout.fillWidth: true
             Layout.fillHeight: true
             visible: review.figure !== null
-            textColor: Theme.muted
-            fontPixels: Theme.fontSmall
-
-            property real lastScale: 1
-            PinchHandler {
-                target: null
-                onActiveChanged: plot.lastScale = 1
-                onActiveScaleChanged: {
-                    plot.zoomAt(activeScale / plot.lastScale, centroid.position.x, centroid.position.y);
-                    plot.lastScale = activeScale;
-                }
-            }
-            DragHandler {
-                target: null
-                property point last
-                onActiveChanged: last = Qt.point(0, 0)
-                onTranslationChanged: {
-                    plot.panBy(translation.x - last.x, translation.y - last.y);
-                    last = Qt.point(translation.x, translation.y);
-                }
-            }
-            WheelHandler {
-                target: null
-                onWheel: event => plot.zoomAt(event.angleDelta.y > 0 ? 1.25 : 0.8, point.position.x, point.position.y)
-            }
-            TapHandler {
-                onTapped: (eventPoint, button) => review.value = plot.valueAt(eventPoint.position.x, eventPoint.position.y)
-            }
-        }
-        Text {
-            objectName: "figureValue"
-            Layout.fillWidth: true
-            elide: Text.ElideNone
-            wrapMode: Text.WordWrap
-            text: review.value !== "" ? review.value : (review.figure !== null ? "Tap the plot for the values at a point; pinch or drag to zoom and pan." : "")
-            color: review.value !== "" ? Theme.text : Theme.muted
-            font.pixelSize: Theme.fontSmall
         }
     }
 }

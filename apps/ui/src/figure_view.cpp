@@ -20,6 +20,16 @@ const QColor kLines[] = {QColor(0x1f, 0x77, 0xb4), QColor(0xff, 0x7f, 0x0e), QCo
                          QColor(0x2c, 0xa0, 0x2c), QColor(0x94, 0x67, 0xbd)};
 const QColor kPoints(0x8a, 0x93, 0x9d);
 
+// A comparison's two sides keep one colour each, whatever their order: A's
+// series ("a_data", "a_model") blue, B's orange; the data lighter, under
+// the model. Other series take the next colour in turn.
+QColor series_colour(const std::string& name, bool points, int& next) {
+  const bool a = name.rfind("a_", 0) == 0, b = name.rfind("b_", 0) == 0;
+  QColor c = a ? kLines[0] : b ? kLines[1] : kLines[next++ % std::size(kLines)];
+  if ((a || b) && points && name.find("data") != std::string::npos) c.setAlpha(70);
+  return c;
+}
+
 std::string shown(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.4g", v);
@@ -27,6 +37,9 @@ std::string shown(double v) {
 }
 
 }  // namespace
+
+QColor FigureView::colourA() { return kLines[0]; }
+QColor FigureView::colourB() { return kLines[1]; }
 
 FigureView::FigureView(QQuickItem* parent) : QQuickPaintedItem(parent) { setAntialiasing(true); }
 
@@ -199,7 +212,7 @@ void FigureView::paint(QPainter* p) {
         // Raw data light grey under everything; a model's points (total torque
         // against θ is no function of θ) in its line colour.
         const bool raw = s.name.rfind("raw", 0) == 0;
-        p->setPen(QPen(raw ? kPoints : kLines[line++ % std::size(kLines)], raw ? 2 : 2.5));
+        p->setPen(QPen(raw ? kPoints : series_colour(s.name, true, line), raw ? 2 : 2.5));
         for (std::size_t i = 0; i < s.x.size(); ++i)
           if (std::isfinite(s.y[i])) p->drawPoint(QPointF(X(s.x[i]), Y(s.y[i])));
       } else {
@@ -214,7 +227,7 @@ void FigureView::paint(QPainter* p) {
           first ? path.moveTo(q) : path.lineTo(q);
           first = false;
         }
-        p->setPen(QPen(kLines[line++ % std::size(kLines)], 2));
+        p->setPen(QPen(series_colour(s.name, false, line), 2));
         p->drawPath(path);
       }
     }

@@ -23,6 +23,9 @@ class FigureView : public QQuickPaintedItem {
   Q_PROPERTY(QString error READ error NOTIFY figureChanged)
   Q_PROPERTY(QColor textColor READ textColor WRITE setTextColor NOTIFY viewChanged)
   Q_PROPERTY(int fontPixels READ fontPixels WRITE setFontPixels NOTIFY viewChanged)
+  // The colours of a comparison's sides (series a_… and b_…), for legends.
+  Q_PROPERTY(QColor colourA READ colourA CONSTANT)
+  Q_PROPERTY(QColor colourB READ colourB CONSTANT)
   // Points of the panel drawn (tests: the plot is not empty).
   Q_PROPERTY(int points READ points NOTIFY viewChanged)
 
@@ -41,6 +44,8 @@ class FigureView : public QQuickPaintedItem {
   int fontPixels() const { return font_pixels_; }
   void setFontPixels(int px);
   int points() const;
+  static QColor colourA();
+  static QColor colourB();
 
   // Zoom by `factor` (> 1: in) about the item point (px, py); pan by pixels.
   Q_INVOKABLE void zoomAt(qreal factor, qreal px, qreal py);

@@ -19,10 +19,24 @@ JobRunner::~JobRunner() {
   }
 }
 
-bool JobRunner::fit(qint64 captureId) { return start(QStringLiteral("fit"), captureId); }
-bool JobRunner::discrepancy(qint64 captureId) { return start(QStringLiteral("discrepancy"), captureId); }
+namespace {
 
-bool JobRunner::start(const QString& kind, qint64 captureId) {
+// Each comparison's overlaid figures, as `knoblab compare --report` names them.
+const QStringList kCompareFigures = {QStringLiteral("torque_position"), QStringLiteral("torque_velocity")};
+
+}  // namespace
+
+bool JobRunner::fit(qint64 captureId) {
+  return start(QStringLiteral("fit"), captureId, {QStringLiteral("--capture"), QString::number(captureId)});
+}
+bool JobRunner::discrepancy(qint64 captureId) {
+  return start(QStringLiteral("discrepancy"), captureId, {QStringLiteral("--capture"), QString::number(captureId)});
+}
+bool JobRunner::compare(qint64 captureA, qint64 captureB) {
+  return start(QStringLiteral("compare"), captureA, {QString::number(captureA), QString::number(captureB)});
+}
+
+bool JobRunner::start(const QString& kind, qint64 captureId, QStringList args) {
   if (process_) {
     emit message(QStringLiteral("a %1 of capture %2 is still running").arg(kind_).arg(capture_id_),
                  QStringLiteral("warning"));
@@ -50,11 +64,11 @@ bool JobRunner::start(const QString& kind, qint64 captureId) {
   });
   // The report too, stored with the result: its figures' CSVs are what the
   // review screens plot (small PNGs: the pictures are not what is wanted).
-  process_->start(knoblab_, {kind, QStringLiteral("--capture"), QString::number(captureId), QStringLiteral("--db"), db_,
-                             QStringLiteral("--json"), scratch_->filePath(QStringLiteral("result.json")),
-                             QStringLiteral("--report"), scratch_->filePath(QStringLiteral("report")),
-                             QStringLiteral("--format"), QStringLiteral("png"), QStringLiteral("--dpi"),
-                             QStringLiteral("50")});
+  args.prepend(kind);
+  args << QStringLiteral("--db") << db_ << QStringLiteral("--json") << scratch_->filePath(QStringLiteral("result.json"))
+       << QStringLiteral("--report") << scratch_->filePath(QStringLiteral("report")) << QStringLiteral("--format")
+       << QStringLiteral("png") << QStringLiteral("--dpi") << QStringLiteral("50");
+  process_->start(knoblab_, args);
   emit runningChanged();
   emit progressChanged();
   return true;
@@ -83,6 +97,22 @@ void JobRunner::read_progress() {
   }
 }
 
+QVariantMap JobRunner::read_result() const {
+  QFile f(scratch_->filePath(QStringLiteral("result.json")));
+  if (!f.open(QIODevice::ReadOnly)) return {};
+  QVariantMap result = QJsonDocument::fromJson(f.readAll()).toVariant().toMap();
+  if (kind_ == QStringLiteral("compare") && !result.isEmpty()) {
+    // The scratch directory goes with the job: the figures travel as text.
+    QVariantMap figures;
+    for (const QString& name : kCompareFigures) {
+      QFile csv(scratch_->filePath(QStringLiteral("report/%1.csv").arg(name)));
+      if (csv.open(QIODevice::ReadOnly)) figures.insert(name, QString::fromUtf8(csv.readAll()));
+    }
+    result.insert(QStringLiteral("figures"), figures);
+  }
+  return result;
+}
+
 void JobRunner::done(int exit_code, QProcess::ExitStatus status) {
   if (!process_) return;
   read_progress();
@@ -95,8 +125,7 @@ void JobRunner::done(int exit_code, QProcess::ExitStatus status) {
   } else if (status != QProcess::NormalExit || exit_code != 0) {
     error = errors_.isEmpty() ? QStringLiteral("knoblab %1 exited with status %2").arg(kind).arg(exit_code) : errors_;
   } else {
-    QFile f(scratch_->filePath(QStringLiteral("result.json")));
-    if (f.open(QIODevice::ReadOnly)) result = QJsonDocument::fromJson(f.readAll()).toVariant().toMap();
+    result = read_result();
     if (result.isEmpty()) error = QStringLiteral("knoblab %1 wrote no result").arg(kind);
   }
   process_->deleteLater();

@@ -64,7 +64,8 @@ bool LinkWorker::connect_now() {
       c->hello({{control::kProtocolVersion}, "knoblab-ui", std::nullopt});
     }
     const nlohmann::json sub = c->call(
-        "subscribe", {{"events", {"stats", "fault_latched", "capture_finished", "calibration_finished", "watchdog_expired"}},
+        "subscribe", {{"events", {"stats", "fault_latched", "capture_finished", "calibration_finished", "watchdog_expired",
+                                   "capture_button"}},
                       {"telemetry", true}});
     const std::string shm = sub.value("telemetry_shm", "");
     client_ = std::move(c);

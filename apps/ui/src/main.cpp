@@ -34,13 +34,15 @@ void keep_warnings(QtMsgType type, const QMessageLogContext& context, const QStr
   if (g_previous) g_previous(type, context, text);
 }
 
-// Renders the window once hapticd's state is in (or the wait is over),
-// writes the PNG and checks it. Exit status: 0 all well, 1 a problem.
+// Renders the window once hapticd's state is in and the library and any
+// job the screen started are done (or the wait is over), writes the PNG and
+// checks it. Exit status: 0 all well, 1 a problem.
 int screenshot(QQuickWindow& window, knoblab::ui::DaemonLink& link, const knoblab::ui::KnobLibrary& library,
-               const UiOptions& o) {
+               const knoblab::ui::JobRunner& jobs, const UiOptions& o) {
   QElapsedTimer waited;
   waited.start();
-  while ((link.state().isEmpty() || library.loading()) && waited.elapsed() < static_cast<qint64>(o.wait_s * 1000))
+  while ((link.state().isEmpty() || library.loading() || jobs.running()) &&
+         waited.elapsed() < static_cast<qint64>(o.wait_s * 1000))
     QCoreApplication::processEvents(QEventLoop::AllEvents, 50);
   // Let bindings settle and animations (the message bar's) finish.
   QElapsedTimer settle;
@@ -92,6 +94,9 @@ int main(int argc, char** argv) {
     qputenv("QT_QPA_PLATFORM", "offscreen");
     qputenv("QT_QUICK_BACKEND", "software");
   }
+  // The on-screen keyboard is the app's own (InputPanel in Main.qml), on a
+  // desktop too; QT_IM_MODULE set by the user wins.
+  if (!qEnvironmentVariableIsSet("QT_IM_MODULE")) qputenv("QT_IM_MODULE", "qtvirtualkeyboard");
   g_previous = qInstallMessageHandler(keep_warnings);
   QGuiApplication app(argc, argv);
   app.setApplicationName(QStringLiteral("knoblab-ui"));
@@ -120,7 +125,7 @@ int main(int argc, char** argv) {
   if (engine.rootObjects().isEmpty()) return 2;
   auto* window = qobject_cast<QQuickWindow*>(engine.rootObjects().first());
   if (!window) return 2;
-  if (!o.screenshot.empty()) return screenshot(*window, link, library, o);
+  if (!o.screenshot.empty()) return screenshot(*window, link, library, jobs, o);
   if (o.fullscreen) window->showFullScreen();
   else window->show();
   QTimer status;

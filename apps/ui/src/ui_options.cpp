@@ -15,9 +15,10 @@ std::string ui_usage() {
          "goes safe (--no-supervise: watch only). It reads the store hapticd records into\n"
          "(--db, default /var/lib/knoblab/lab.sqlite) and runs fits and discrepancy with the\n"
          "knoblab command (--knoblab, default: knoblab on the PATH), which store their results\n"
-         "there. Screens: home, system, library.\n"
+         "there. Screens: home, system, capture, library, review (the newest capture),\n"
+         "compare (the two newest).\n"
          "--screenshot renders the first screen offscreen at --size, waits up to --wait s\n"
-         "(default 5) for hapticd's state, writes the PNG, checks that no text is clipped and\n"
+         "(default 5) for hapticd's state and the screen's job, writes the PNG, checks that no text is clipped and\n"
          "no QML warning was printed, and exits 0 (all well), 1 (a problem, printed) or 2.\n"
          "--status-file writes what the screen shows (its named texts) as JSON every second.\n";
 }
