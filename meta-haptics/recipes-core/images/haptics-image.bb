@@ -1,16 +1,17 @@
 # nooelint: oelint.var.suggestedvar.BUGTRACKER,oelint.var.suggestedvar.CVE_PRODUCT - an image: no tracker of its own, no CVE product
 SUMMARY = "The knoblab appliance image"
 DESCRIPTION = "Boots into hapticd (the realtime haptic daemon) with the \
-               knoblab command, the Modbus simulator and rt-tests, on a \
-               read-only root with the sqlite store on its own partition."
+               knoblab command, the Modbus simulator, rt-tests and, with \
+               meta-qt6, the touchscreen kiosk knoblab-ui, on a read-only \
+               root with the sqlite store on its own partition."
 SECTION = "images"
 LICENSE = "MIT"
 
 inherit core-image
 
 IMAGE_INSTALL += "knoblab rt-tests"
-# The Qt kiosk goes here once it exists (meta-qt6 is already in the kas files):
-#   IMAGE_INSTALL += "knoblab-ui"
+# knoblab-ui, the touchscreen kiosk, joins them when meta-qt6 is in the build:
+# dynamic-layers/qt6-layer appends it here (with the kiosk's package).
 
 # A wic disk (the .wks files beside this recipe, where scarthgap and later
 # releases both look): root, then the data partition, mounted at /var/lib/knoblab once

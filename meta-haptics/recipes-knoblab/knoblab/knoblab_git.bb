@@ -2,7 +2,8 @@
 SUMMARY = "knoblab: capture, model and render the feel of rotary knobs"
 DESCRIPTION = "The knoblab lab appliance's software: hapticd (the 10 kHz \
                realtime haptic daemon and its systemd unit), the knoblab \
-               command and knoblab-modbus-sim."
+               command, knoblab-modbus-sim and, when meta-qt6 is in the \
+               build, knoblab-ui (the touchscreen kiosk)."
 HOMEPAGE = "https://github.com/knoblab/knoblab"
 SECTION = "devel"
 # The project has chosen no licence yet; CLOSED until it does.
@@ -42,9 +43,9 @@ PACKAGECONFIG[tests] = "-DKNOBLAB_TESTS=ON -DCMAKE_GTEST_DISCOVER_TESTS_DISCOVER
 PACKAGECONFIG[xenomai] = "-DKNOBLAB_RT_BACKEND=xenomai -DKNOBLAB_XENO_CONFIG=${STAGING_BINDIR}/xeno-config, \
                           -DKNOBLAB_RT_BACKEND=posix,xenomai"
 
-# knoblab-ui (the Qt 6 kiosk) is not built here yet: that needs meta-qt6's
-# qtbase and qtdeclarative in DEPENDS and the layer in LAYERDEPENDS. The CI
-# image (images/qemu) carries it meanwhile.
+# knoblab-ui (the Qt 6 kiosk) needs meta-qt6, which the layer only
+# recommends: dynamic-layers/qt6-layer's append turns it on, with its Qt
+# dependencies and the knoblab-ui package, when meta-qt6 is in the build.
 EXTRA_OECMAKE += "-DKNOBLAB_UI=OFF"
 
 do_configure:prepend() {
@@ -55,10 +56,11 @@ do_configure:prepend() {
 }
 
 do_install:append() {
-    # CMake puts the unit under ${prefix}/lib; without usrmerge systemd looks in /lib.
+    # CMake puts the units (hapticd's, and knoblab-ui's when it is built)
+    # under ${prefix}/lib; without usrmerge systemd looks in /lib.
     if [ "${prefix}/lib/systemd/system" != "${systemd_system_unitdir}" ]; then
         install -d ${D}${systemd_system_unitdir}
-        mv ${D}${prefix}/lib/systemd/system/hapticd.service ${D}${systemd_system_unitdir}/
+        mv ${D}${prefix}/lib/systemd/system/*.service ${D}${systemd_system_unitdir}/
         rmdir --ignore-fail-on-non-empty ${D}${prefix}/lib/systemd/system ${D}${prefix}/lib/systemd
     fi
     # The default hardware: the simulated camera and in-memory lines. A site
