@@ -9,7 +9,12 @@
 #   kas-schema     kas/*.yml against kas's JSON schema
 #   oelint         oelint-adv on every recipe, append and class
 #   graph-MACHINE  bitbake -g haptics-image per kas configuration: every
-#                  dependency resolves and the task graph is written
+#                  dependency resolves and the task graph is written; with
+#                  meta-qt6 (the kas files have it) knoblab builds against
+#                  qtdeclarative and the image installs knoblab-ui
+#   graph-qemux86-64-no-qt6
+#                  the same for kas/qemux86-64.yml without meta-qt6 (and
+#                  meta-python): no Qt in the graph, no kiosk in the image
 #   check-layer    yocto-check-layer on meta-haptics
 #   graph-wrynose  (only when named in KNOBLAB_LAYER_CHECK_STEPS) bitbake -g
 #                  haptics-image for qemux86-64 on Yocto 6.0 wrynose, from
@@ -30,7 +35,7 @@ repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 layers=${KNOBLAB_LAYERS:-/var/cache/knoblab/layers}
 work=${KNOBLAB_YOCTO_BUILD:-/var/cache/knoblab/yocto-build}
 tools=${KNOBLAB_YOCTO_TOOLS:-/var/cache/knoblab/yocto-tools}
-steps=${KNOBLAB_LAYER_CHECK_STEPS:-kernel-config kas-schema oelint graph-qemux86-64 graph-raspberrypi5 graph-qemux86-64-xenomai check-layer}
+steps=${KNOBLAB_LAYER_CHECK_STEPS:-kernel-config kas-schema oelint graph-qemux86-64 graph-raspberrypi5 graph-qemux86-64-xenomai graph-qemux86-64-no-qt6 check-layer}
 bb_user=knoblab-bb
 venv=$tools/venv
 # Versions this check was written against; a new one is a deliberate change.
@@ -119,14 +124,21 @@ step_oelint() {
 }
 
 # A build directory from a kas configuration (written by kas as root: the
-# checkout belongs to root), then `bitbake -g` in it as the unprivileged user.
+# checkout belongs to root), less the layers named after it (paths under the
+# layers directory), then `bitbake -g` in it as the unprivileged user.
 graph() {
-  local name=$1 config=$2 build=$work/$1
+  local name=$1 config=$2 build=$work/$1 l
+  shift 2
   mkdir -p "$work/kas"
   ln -sfn "$layers" "$work/kas/layers"
   (cd "$repo" && KAS_WORK_DIR=$work/kas KAS_BUILD_DIR=$build \
      "$venv/bin/kas" checkout --skip repos_checkout "$config" 2>&1 | grep -v ' - INFO ' || true)
   [ -f "$build/conf/local.conf" ] || { echo "kas wrote no configuration for $config"; return 1; }
+  for l in "$@"; do
+    sed -i "\#/kas/layers/$l \\\\\$#d" "$build/conf/bblayers.conf"
+    ! grep -q "/kas/layers/$l[ \"]" "$build/conf/bblayers.conf" || {
+      echo "could not leave $l out of $build/conf/bblayers.conf"; return 1; }
+  done
   # Parsing only: nothing is fetched. externalsrc hashes the whole source
   # tree when it cannot use git (the checkout is root's, not the bitbake
   # user's), build/ and its image rootfs included: parse a copy of the tracked
@@ -160,6 +172,38 @@ task_graph() {
   grep -E '^(Parsing of|NOTE: Resolving|WARNING|ERROR)' "$build/graph.log" | head -20 || true
   [ -s "$build/task-depends.dot" ] || { echo "no task graph written"; return 1; }
   echo "$(wc -l < "$build/pn-buildlist") recipes in haptics-image's graph ($build/task-depends.dot)"
+  kiosk_check "$build" "$setup"
+}
+
+# knoblab-ui (meta-haptics' dynamic-layers/qt6-layer) is in the image exactly
+# when meta-qt6 is in build directory $1's layers: knoblab's build depends on
+# qtdeclarative (and its host tools), haptics-image installs the kiosk's
+# package and the graph has what that package needs at run time; without
+# meta-qt6 none of it. $2 as for task_graph.
+kiosk_check() {
+  local build=$1 setup=$2 install qt bad=0 edge pn
+  install=$(as_bb "cd '$build' && $setup && bitbake-getvar -r haptics-image --value IMAGE_INSTALL 2>getvar.log") || {
+    tail -20 "$build/getvar.log"; return 1; }
+  install=" $(tr -s ' \n\t' ' ' <<<"$install") "
+  qt=$(grep '^qt' "$build/pn-buildlist" | sort | tr '\n' ' ')
+  if grep -q '/meta-qt6[ "]' "$build/conf/bblayers.conf"; then
+    for edge in '"knoblab.do_prepare_recipe_sysroot" -> "qtdeclarative.do_populate_sysroot"' \
+                '"knoblab.do_prepare_recipe_sysroot" -> "qtdeclarative-native.do_populate_sysroot"' \
+                '"knoblab.do_prepare_recipe_sysroot" -> "qtvirtualkeyboard.do_populate_sysroot"'; do
+      grep -qF "$edge" "$build/task-depends.dot" || { echo "not in the graph: $edge"; bad=1; }
+    done
+    for pn in qtbase qtdeclarative qtsvg qtvirtualkeyboard ttf-dejavu; do
+      grep -qx "$pn" "$build/pn-buildlist" || { echo "not in the graph: $pn"; bad=1; }
+    done
+    [[ $install == *" knoblab-ui "* ]] || { echo "haptics-image does not install knoblab-ui:$install"; bad=1; }
+    [ $bad = 1 ] || echo "with meta-qt6: haptics-image installs knoblab-ui; in the graph: $qt"
+  else
+    [ -z "$qt" ] || { echo "without meta-qt6, yet in the graph: $qt"; bad=1; }
+    ! grep -qx ttf-dejavu "$build/pn-buildlist" || { echo "without meta-qt6, yet ttf-dejavu in the graph"; bad=1; }
+    [[ $install != *" knoblab-ui "* ]] || { echo "without meta-qt6, yet haptics-image installs knoblab-ui"; bad=1; }
+    [ $bad = 1 ] || echo "without meta-qt6: no Qt recipe in the graph, no knoblab-ui in the image"
+  fi
+  return $bad
 }
 
 # The wrynose compatibility LAYERSERIES_COMPAT declares: no kas file pins
@@ -209,6 +253,7 @@ for s in $steps; do
     graph-qemux86-64) fn="graph $s kas/qemux86-64.yml" ;;
     graph-raspberrypi5) fn="graph $s kas/raspberrypi5.yml" ;;
     graph-qemux86-64-xenomai) fn="graph $s kas/qemux86-64.yml:kas/xenomai.yml" ;;
+    graph-qemux86-64-no-qt6) fn="graph $s kas/qemux86-64.yml meta-qt6 meta-openembedded/meta-python" ;;
     check-layer) fn=step_check_layer ;;
     graph-wrynose) fn=step_graph_wrynose ;;
     *) die "unknown step $s" ;;
