@@ -286,6 +286,53 @@ TEST_P(CaptureWizard, DrivenByTouchItCapturesFitsFindsAndStoresWhatTheCliWould) 
   ::shm_unlink(ring.c_str());
 }
 
+// On a tripod the camera's unbalance torque depends on its tilt: the wizard
+// calibrates gravity there, three runs averaged and accepted by hapticd (Eq. 2).
+TEST(CaptureWizardOnATripod, CalibratesGravityThreeTimesAndHapticdAcceptsTheAverage) {
+  g_warnings.clear();
+  test::Hapticd daemon({}, {"--rate", "5000"});
+  ASSERT_TRUE(daemon.ready()) << daemon.log();
+  LinkWorker::Options lo;
+  lo.socket = QString::fromStdString(daemon.socket());
+  DaemonLink link(lo);
+  KnobLibrary knobs(QString::fromStdString(daemon.db()));
+  JobRunner jobs(KNOBLAB_CLI_PATH, QString::fromStdString(daemon.db()));
+  TelemetryFeed feed;
+  QStringList messages;
+  QObject::connect(&link, &DaemonLink::message, [&](const QString& t, const QString&) { messages << t; });
+  QQmlApplicationEngine engine;
+  engine.setInitialProperties({{"link", QVariant::fromValue(&link)},
+                               {"knobs", QVariant::fromValue(&knobs)},
+                               {"jobs", QVariant::fromValue(&jobs)},
+                               {"feed", QVariant::fromValue(&feed)},
+                               {"startScreen", QString("capture")},
+                               {"width", 1024},
+                               {"height", 600}});
+  engine.loadFromModule("Knoblab.Ui", "Main");
+  ASSERT_FALSE(engine.rootObjects().isEmpty());
+  auto* window = qobject_cast<QQuickWindow*>(engine.rootObjects().first());
+  ASSERT_NE(window, nullptr);
+  window->show();
+  Screen screen(window);
+  ASSERT_TRUE(spin_until([&] { return link.connected(); })) << daemon.log();
+
+  ASSERT_TRUE(spin_until([&] { return screen.tap("mountTripod") && screen.shows("calibrateGravity"); }))
+      << "tripod tile: " << screen.shows("mountTripod") << ", mounting row: " << screen.shows("gravityState");
+  ASSERT_TRUE(screen.tap("calibrateGravity"));
+  ASSERT_TRUE(spin_until([&] { return screen.text("gravityState").startsWith("Calibrating gravity: run 2"); }, 120000))
+      << screen.text("gravityState").toStdString() << " / " << messages.join(" | ").toStdString();
+  // Three runs of a revolution each way (35 s each in real time).
+  ASSERT_TRUE(spin_until([&] { return screen.text("gravityState").startsWith("Gravity calibrated"); }, 300000))
+      << screen.text("gravityState").toStdString() << " / " << messages.join(" | ").toStdString();
+  screen.shoot("capture-1-tripod-1024x600");
+  // hapticd holds the accepted average, three runs of it.
+  control::Client c(daemon.socket());
+  const nlohmann::json state = c.call("get_state");
+  ASSERT_TRUE(state["calibration"]["accepted"].contains("gravity")) << state.dump();
+  EXPECT_EQ(state["calibration"]["accepted"]["gravity"]["repetitions"], 3) << state.dump();
+  EXPECT_TRUE(g_warnings.isEmpty()) << g_warnings.join("\n").toStdString();
+}
+
 INSTANTIATE_TEST_SUITE_P(AtPanelSizes, CaptureWizard, ::testing::Values(QSize(1024, 600), QSize(1280, 800)),
                          [](const auto& p) {
                            return std::to_string(p.param.width()) + "_" + std::to_string(p.param.height());

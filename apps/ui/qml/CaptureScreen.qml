@@ -102,8 +102,8 @@ Item {
                     } else if (++wizard.gravityRuns < 3) {
                         wizard.link.request("calibrate", { kind: "gravity" });
                     } else {
+                        // Accepted when hapticd says so (it refuses if the runs do not qualify).
                         wizard.link.request("accept_calibration", { kind: "gravity" });
-                        wizard.gravityState = "accepted";
                     }
                 }
             }
@@ -113,6 +113,8 @@ Item {
                 wizard.phase = "failed";
             if (cmd === "calibrate" && !ok && wizard.gravityState === "running")
                 wizard.gravityState = "failed";
+            if (cmd === "accept_calibration" && wizard.gravityState === "running")
+                wizard.gravityState = ok ? "accepted" : "failed";
         }
     }
     Connections {
