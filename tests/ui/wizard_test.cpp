@@ -133,6 +133,41 @@ class Screen {
   QQuickWindow* window_;
 };
 
+// The kiosk as knoblab-ui builds it, against `daemon`, offscreen at `panel`,
+// opened at `start`; what it put in the message bar kept in `messages`.
+struct Kiosk {
+  Kiosk(const test::Hapticd& daemon, const QString& start, QSize panel)
+      : link(options(daemon)),
+        knobs(QString::fromStdString(daemon.db())),
+        jobs(KNOBLAB_CLI_PATH, QString::fromStdString(daemon.db())) {
+    QObject::connect(&link, &DaemonLink::telemetryNameChanged, &feed, [this] { feed.setRing(link.telemetryName()); });
+    QObject::connect(&link, &DaemonLink::message, [this](const QString& t, const QString&) { messages << t; });
+    engine.setInitialProperties({{"link", QVariant::fromValue(&link)},
+                                 {"knobs", QVariant::fromValue(&knobs)},
+                                 {"jobs", QVariant::fromValue(&jobs)},
+                                 {"feed", QVariant::fromValue(&feed)},
+                                 {"startScreen", start},
+                                 {"width", panel.width()},
+                                 {"height", panel.height()}});
+    engine.loadFromModule("Knoblab.Ui", "Main");
+    if (!engine.rootObjects().isEmpty()) window = qobject_cast<QQuickWindow*>(engine.rootObjects().first());
+    if (window) window->show();
+  }
+  static LinkWorker::Options options(const test::Hapticd& daemon) {
+    LinkWorker::Options o;
+    o.socket = QString::fromStdString(daemon.socket());
+    return o;
+  }
+
+  DaemonLink link;
+  KnobLibrary knobs;
+  JobRunner jobs;
+  TelemetryFeed feed;
+  QStringList messages;
+  QQmlApplicationEngine engine;
+  QQuickWindow* window = nullptr;  // null: Main did not load
+};
+
 // At both panel sizes the appliance is designed for: each step's screen is kept.
 class CaptureWizard : public ::testing::TestWithParam<QSize> {};
 
@@ -146,29 +181,12 @@ TEST_P(CaptureWizard, DrivenByTouchItCapturesFitsFindsAndStoresWhatTheCliWould) 
   test::Hapticd daemon(ring, {"--rate", "5000"});
   ASSERT_TRUE(daemon.ready()) << daemon.log();
 
-  LinkWorker::Options lo;
-  lo.socket = QString::fromStdString(daemon.socket());
-  DaemonLink link(lo);
-  KnobLibrary knobs(QString::fromStdString(daemon.db()));
-  JobRunner jobs(KNOBLAB_CLI_PATH, QString::fromStdString(daemon.db()));
-  TelemetryFeed feed;
-  QObject::connect(&link, &DaemonLink::telemetryNameChanged, &feed, [&] { feed.setRing(link.telemetryName()); });
-  QStringList messages;
-  QObject::connect(&link, &DaemonLink::message, [&](const QString& t, const QString&) { messages << t; });
-
-  QQmlApplicationEngine engine;
-  engine.setInitialProperties({{"link", QVariant::fromValue(&link)},
-                               {"knobs", QVariant::fromValue(&knobs)},
-                               {"jobs", QVariant::fromValue(&jobs)},
-                               {"feed", QVariant::fromValue(&feed)},
-                               {"startScreen", QString("home")},
-                               {"width", panel.width()},
-                               {"height", panel.height()}});
-  engine.loadFromModule("Knoblab.Ui", "Main");
-  ASSERT_FALSE(engine.rootObjects().isEmpty());
-  auto* window = qobject_cast<QQuickWindow*>(engine.rootObjects().first());
-  ASSERT_NE(window, nullptr);
-  window->show();
+  Kiosk kiosk(daemon, "home", panel);
+  ASSERT_NE(kiosk.window, nullptr);
+  DaemonLink& link = kiosk.link;
+  KnobLibrary& knobs = kiosk.knobs;
+  const QStringList& messages = kiosk.messages;
+  QQuickWindow* window = kiosk.window;
   Screen screen(window);
   ASSERT_TRUE(spin_until([&] { return link.connected() && !link.telemetryName().isEmpty(); })) << daemon.log();
 
@@ -292,27 +310,11 @@ TEST(CaptureWizardOnATripod, CalibratesGravityThreeTimesAndHapticdAcceptsTheAver
   g_warnings.clear();
   test::Hapticd daemon({}, {"--rate", "5000"});
   ASSERT_TRUE(daemon.ready()) << daemon.log();
-  LinkWorker::Options lo;
-  lo.socket = QString::fromStdString(daemon.socket());
-  DaemonLink link(lo);
-  KnobLibrary knobs(QString::fromStdString(daemon.db()));
-  JobRunner jobs(KNOBLAB_CLI_PATH, QString::fromStdString(daemon.db()));
-  TelemetryFeed feed;
-  QStringList messages;
-  QObject::connect(&link, &DaemonLink::message, [&](const QString& t, const QString&) { messages << t; });
-  QQmlApplicationEngine engine;
-  engine.setInitialProperties({{"link", QVariant::fromValue(&link)},
-                               {"knobs", QVariant::fromValue(&knobs)},
-                               {"jobs", QVariant::fromValue(&jobs)},
-                               {"feed", QVariant::fromValue(&feed)},
-                               {"startScreen", QString("capture")},
-                               {"width", 1024},
-                               {"height", 600}});
-  engine.loadFromModule("Knoblab.Ui", "Main");
-  ASSERT_FALSE(engine.rootObjects().isEmpty());
-  auto* window = qobject_cast<QQuickWindow*>(engine.rootObjects().first());
-  ASSERT_NE(window, nullptr);
-  window->show();
+  Kiosk kiosk(daemon, "capture", QSize(1024, 600));
+  ASSERT_NE(kiosk.window, nullptr);
+  const DaemonLink& link = kiosk.link;
+  const QStringList& messages = kiosk.messages;
+  QQuickWindow* window = kiosk.window;
   Screen screen(window);
   ASSERT_TRUE(spin_until([&] { return link.connected(); })) << daemon.log();
 
