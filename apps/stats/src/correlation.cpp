@@ -7,6 +7,7 @@
 
 #include "knoblab/stats/distributions.hpp"
 #include "knoblab/stats/ranks.hpp"
+#include "paired_sums.hpp"
 
 namespace knoblab::stats {
 namespace {
@@ -22,26 +23,14 @@ void check_pairs(std::span<const double> x, std::span<const double> y, const cha
       throw std::invalid_argument(std::string(what) + ": non-finite value in pair " + std::to_string(i));
 }
 
-double mean(std::span<const double> v) {
-  double sum = 0;
-  for (const double a : v) sum += a;
-  return sum / static_cast<double>(v.size());
-}
-
 CorrelationResult correlate(std::span<const double> x, std::span<const double> y, const char* what) {
-  const double mx = mean(x), my = mean(y);
-  double sxx = 0, syy = 0, sxy = 0;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    sxx += (x[i] - mx) * (x[i] - mx);
-    syy += (y[i] - my) * (y[i] - my);
-    sxy += (x[i] - mx) * (y[i] - my);
-  }
-  if (sxx == 0 || syy == 0)
+  const PairedSums s = paired_sums(x, y);
+  if (s.sxx == 0 || s.syy == 0)
     throw std::invalid_argument(std::string(what) + ": a sample is constant, the correlation is undefined");
   CorrelationResult c;
   c.n = x.size();
   // Rounding can push |r| a hair past 1.
-  c.r = std::clamp(sxy / std::sqrt(sxx * syy), -1.0, 1.0);
+  c.r = std::clamp(s.sxy / std::sqrt(s.sxx * s.syy), -1.0, 1.0);
   const double df = static_cast<double>(c.n) - 2;
   const double one_minus_r2 = (1 - c.r) * (1 + c.r);
   c.p = one_minus_r2 == 0 ? 0.0 : t_two_sided_p(c.r * std::sqrt(df / one_minus_r2), df);

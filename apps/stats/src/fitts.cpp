@@ -4,18 +4,14 @@
 #include <stdexcept>
 #include <string>
 
+#include "paired_sums.hpp"
+
 namespace knoblab::stats {
 namespace {
 
 void require_finite(std::span<const double> v, const char* what, const char* name) {
   for (const double a : v)
     if (!std::isfinite(a)) throw std::invalid_argument(std::string(what) + ": non-finite " + name);
-}
-
-double mean(std::span<const double> v) {
-  double sum = 0;
-  for (const double a : v) sum += a;
-  return sum / static_cast<double>(v.size());
 }
 
 }  // namespace
@@ -69,13 +65,7 @@ LineFit fit_line(std::span<const double> index_of_difficulty, std::span<const do
   if (x.size() < 2) throw std::invalid_argument("fit_line: needs at least 2 points");
   require_finite(x, "fit_line", "ID");
   require_finite(y, "fit_line", "MT");
-  const double mx = mean(x), my = mean(y);
-  double sxx = 0, syy = 0, sxy = 0;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    sxx += (x[i] - mx) * (x[i] - mx);
-    syy += (y[i] - my) * (y[i] - my);
-    sxy += (x[i] - mx) * (y[i] - my);
-  }
+  const auto [mx, my, sxx, syy, sxy] = paired_sums(x, y);
   if (sxx == 0) throw std::invalid_argument("fit_line: every ID is the same, the slope is undefined");
   if (syy == 0) throw std::invalid_argument("fit_line: every MT is the same, r² is undefined");
   LineFit f;
