@@ -1,5 +1,8 @@
 #include "knoblab/hal/factory.hpp"
 
+#include <sys/mman.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -11,6 +14,7 @@
 #include "knoblab/capture/sim_daq.hpp"
 #include "knoblab/hal/comedi_daq.hpp"
 #include "knoblab/hal/memory_lines.hpp"
+#include "knoblab/hal/shared_hand_channel.hpp"
 #include "test_util.hpp"
 
 namespace knoblab::hal {
@@ -81,6 +85,31 @@ TEST(MakeDaq, ASimHandTurnsTheKnobAlongItsPathWithTheMotorOff) {
                 make_daq(json(R"({"backend": "sim", "knob": "moderate-detents", "hand": {"amplitude": 1}})"));
               }),
               HasSubstr("daq.hand.amplitude: unknown key"));
+}
+
+TEST(MakeDaq, AGuidedHandIsSteeredThroughItsSharedMemoryChannelByAnotherParty) {
+  const std::string name = "/knoblab-factory-test-hand-" + std::to_string(::getpid());
+  const std::string config =
+      R"({"backend": "sim", "knob": "study3-not-rendered", "rate_hz": 1000, "hand": {"channel": ")" + name + R"("}})";
+  auto daq = make_daq(json(config.c_str()));
+  auto* sim = dynamic_cast<capture::SimDaq*>(daq.get());
+  ASSERT_NE(sim, nullptr);
+  // The participant's side: the same channel, opened by name (as knoblab study simulate does).
+  const SharedHandChannel participant(name);
+  participant.channel().send({0.7, 0.3, 1.0, 0.01});
+  capture::DaqInputs in;
+  for (int i = 0; i < 600; ++i) ASSERT_EQ(daq->read(in), capture::IoStatus::ok);
+  EXPECT_NEAR(sim->plant().state().knob_angle, 0.7, 0.01);
+  ::shm_unlink(name.c_str());
+  EXPECT_THAT(error_of<ConfigError>([] {
+                make_daq(json(R"({"backend": "sim", "knob": "moderate-detents", "hand": {"channel": "no-slash"}})"));
+              }),
+              HasSubstr("daq.hand.channel: hand channel name 'no-slash' must be"));
+  EXPECT_THAT(error_of<ConfigError>([] {
+                make_daq(json(R"({"backend": "sim", "knob": "moderate-detents",
+                                  "hand": {"channel": "/x", "amplitude_rad": 1}})"));
+              }),
+              HasSubstr("daq.hand.amplitude_rad: unknown key"));
 }
 
 TEST(MakeDaq, BackendMustBeNamedAndKnown) {

@@ -10,6 +10,7 @@
 #include "knoblab/hal/comedi_daq.hpp"
 #include "knoblab/hal/gpiod_lines.hpp"
 #include "knoblab/hal/memory_lines.hpp"
+#include "knoblab/hal/shared_hand_channel.hpp"
 #include "knoblab/sim/hand.hpp"
 #include "knoblab/sim/presets.hpp"
 
@@ -45,7 +46,17 @@ std::unique_ptr<capture::Daq> make_sim_daq(const nlohmann::json& config, const s
   plant.knob = preset->knob;
   plant.seed = r.uint64_or("seed", plant.seed);
   std::optional<sim::HandParams> hand;
-  if (r.has("hand")) {  // someone turning the knob, for render mode
+  std::optional<SharedHandChannel> guided;
+  if (r.has("hand") && r.object("hand").has("channel")) {  // a simulated participant steers it
+    ConfigReader h = r.object("hand");
+    const std::string name = h.string("channel");
+    h.finish();
+    try {
+      guided.emplace(name);
+    } catch (const std::runtime_error& e) {
+      h.fail("channel", e.what());
+    }
+  } else if (r.has("hand")) {  // someone turning the knob, for render mode
     ConfigReader h = r.object("hand");
     hand.emplace();
     hand->amplitude_rad = h.number_or("amplitude_rad", hand->amplitude_rad);
@@ -61,6 +72,7 @@ std::unique_ptr<capture::Daq> make_sim_daq(const nlohmann::json& config, const s
   r.finish();
   auto daq = std::make_unique<capture::SimDaq>(plant, rate_hz);
   if (hand) daq->plant().add_effect(sim::make_hand(*hand));
+  if (guided) daq->plant().add_effect(sim::make_guided_hand(guided->channel(), guided->mapping()));
   return daq;
 }
 
