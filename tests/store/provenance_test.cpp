@@ -215,7 +215,7 @@ INSERT INTO discrepancies (id, capture_id, heldout_capture_id, result, created_a
   }
 
   auto store = ks::Store::open(path);
-  EXPECT_EQ(store.schema_version(), 7);
+  EXPECT_EQ(store.schema_version(), ks::latest_schema_version());
   EXPECT_EQ(store.integrity_check(), "ok");
   EXPECT_FALSE(store.connection().prepare("PRAGMA foreign_key_check").step());
   const auto fit = store.fit_info(7);

@@ -145,6 +145,107 @@ CREATE TABLE discrepancy_files (
   UNIQUE (discrepancy_id, name)
 );
 )sql",
+    // 8: the user studies (docs/store.md "Study sessions"): one session per
+    // participant of a study, with the protocol file as run; each trial in
+    // one row, committed whole when it ends, so a session cut short resumes
+    // at the first plan index without a row; the experimenter's notes. Times
+    // are unix seconds. The participant is the pseudonymous code of
+    // docs/studies.md (at least one digit: never a name). What ran is fixed
+    // once a session is open, and the triggers keep trials inside the plan,
+    // out of a finished session, and a session unfinished until every trial
+    // is in. A trial's capture is only a reference, like a held-out capture
+    // (step 6): deleting it keeps the trial. Rowid tables: a trial row holds
+    // its whole trace.
+    R"sql(
+CREATE TABLE study_sessions (
+  session_id        INTEGER PRIMARY KEY,
+  study             TEXT NOT NULL CHECK (length(study) BETWEEN 1 AND 64
+                                         AND study NOT GLOB '*[^A-Za-z0-9._-]*'),
+  participant       TEXT NOT NULL CHECK (length(participant) BETWEEN 1 AND 16
+                                         AND participant NOT GLOB '*[^A-Za-z0-9_-]*'
+                                         AND participant GLOB '*[0-9]*'),
+  participant_index INTEGER NOT NULL CHECK (participant_index >= 0),
+  protocol_json     TEXT NOT NULL
+    CHECK (CASE WHEN json_valid(protocol_json)
+                THEN json_type(protocol_json) = 'object' AND json_extract(protocol_json, '$.study') IS study
+                ELSE 0 END),
+  protocol_sha256   TEXT NOT NULL
+    CHECK (length(protocol_sha256) = 64 AND protocol_sha256 NOT GLOB '*[^0-9a-f]*'),
+  plan_trials       INTEGER NOT NULL CHECK (plan_trials > 0),
+  simulated         INTEGER NOT NULL CHECK (simulated IN (0, 1)),
+  started_unix      REAL NOT NULL,
+  finished_unix     REAL CHECK (finished_unix IS NULL OR finished_unix >= started_unix),
+  knoblab_version   TEXT CHECK (knoblab_version IS NULL OR length(knoblab_version) > 0),
+  UNIQUE (study, participant)
+);
+CREATE TABLE study_trials (
+  session_id      INTEGER NOT NULL REFERENCES study_sessions(session_id) ON DELETE CASCADE,
+  trial_index     INTEGER NOT NULL CHECK (trial_index >= 1),
+  block           INTEGER NOT NULL CHECK (block >= 1),
+  stage           TEXT NOT NULL CHECK (length(stage) > 0),
+  practice        INTEGER NOT NULL CHECK (practice IN (0, 1)),
+  repetition      INTEGER NOT NULL CHECK (repetition >= 0),
+  condition_json  TEXT NOT NULL
+    CHECK (CASE WHEN json_valid(condition_json) THEN json_type(condition_json) = 'object' ELSE 0 END),
+  started_unix    REAL NOT NULL,
+  ended_unix      REAL NOT NULL CHECK (ended_unix >= started_unix),
+  result_json     TEXT NOT NULL CHECK (json_valid(result_json)),
+  ratings_json    TEXT NOT NULL CHECK (json_valid(ratings_json)),
+  biometrics_json TEXT NOT NULL CHECK (json_valid(biometrics_json)),
+  trace_json      TEXT NOT NULL CHECK (json_valid(trace_json)),
+  capture_id      INTEGER REFERENCES captures(id) ON DELETE SET NULL,
+  PRIMARY KEY (session_id, trial_index)
+);
+CREATE INDEX study_trials_by_capture ON study_trials(capture_id);
+CREATE TABLE study_notes (
+  note_id     INTEGER PRIMARY KEY,
+  session_id  INTEGER NOT NULL REFERENCES study_sessions(session_id) ON DELETE CASCADE,
+  trial_index INTEGER CHECK (trial_index IS NULL OR trial_index >= 1),
+  noted_unix  REAL NOT NULL,
+  text        TEXT NOT NULL,
+  tags_json   TEXT NOT NULL DEFAULT '[]'
+    CHECK (CASE WHEN json_valid(tags_json) THEN json_type(tags_json) = 'array' ELSE 0 END),
+  CHECK (length(text) > 0 OR json_array_length(tags_json) > 0)
+);
+CREATE INDEX study_notes_by_session ON study_notes(session_id);
+CREATE TRIGGER study_sessions_fixed
+BEFORE UPDATE OF study, participant, participant_index, protocol_json, protocol_sha256,
+                 plan_trials, simulated, started_unix ON study_sessions
+BEGIN
+  SELECT RAISE(ABORT, 'a study session''s protocol, participant and plan are fixed once it is open');
+END;
+CREATE TRIGGER study_sessions_finish_complete
+BEFORE UPDATE OF finished_unix ON study_sessions
+WHEN NEW.finished_unix IS NOT NULL
+ AND (SELECT count(*) FROM study_trials WHERE session_id = NEW.session_id) < NEW.plan_trials
+BEGIN
+  SELECT RAISE(ABORT, 'a study session with trials missing cannot be finished');
+END;
+CREATE TRIGGER study_trials_in_open_session
+BEFORE INSERT ON study_trials
+WHEN (SELECT finished_unix FROM study_sessions WHERE session_id = NEW.session_id) IS NOT NULL
+BEGIN
+  SELECT RAISE(ABORT, 'a finished study session takes no more trials');
+END;
+CREATE TRIGGER study_trials_in_plan
+BEFORE INSERT ON study_trials
+WHEN NEW.trial_index > (SELECT plan_trials FROM study_sessions WHERE session_id = NEW.session_id)
+BEGIN
+  SELECT RAISE(ABORT, 'a study trial''s index is past the end of its session''s plan');
+END;
+CREATE TRIGGER study_trials_stay_in_plan
+BEFORE UPDATE OF session_id, trial_index ON study_trials
+WHEN NEW.trial_index > (SELECT plan_trials FROM study_sessions WHERE session_id = NEW.session_id)
+BEGIN
+  SELECT RAISE(ABORT, 'a study trial''s index is past the end of its session''s plan');
+END;
+CREATE TRIGGER study_notes_in_plan
+BEFORE INSERT ON study_notes
+WHEN NEW.trial_index > (SELECT plan_trials FROM study_sessions WHERE session_id = NEW.session_id)
+BEGIN
+  SELECT RAISE(ABORT, 'a study note''s trial index is past the end of its session''s plan');
+END;
+)sql",
 };
 
 #undef KNOBLAB_NOW

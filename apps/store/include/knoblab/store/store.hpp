@@ -1,6 +1,7 @@
 // The knoblab database: one sqlite file in WAL mode holding knobs, captures
-// with their samples, and results - fits and discrepancy results - with
-// their report files and provenance (docs/store.md).
+// with their samples, results - fits and discrepancy results - with their
+// report files and provenance, and the user studies' sessions with their
+// trials and notes (docs/store.md).
 // Typical use:
 //
 //   auto store = Store::open("knoblab.db");
@@ -30,6 +31,7 @@
 #include "knoblab/store/capture_writer.hpp"
 #include "knoblab/store/error.hpp"
 #include "knoblab/store/sqlite.hpp"
+#include "knoblab/store/study_types.hpp"
 #include "knoblab/store/types.hpp"
 
 namespace knoblab::store {
@@ -155,6 +157,46 @@ class Store {
   // Biometrics recorded beside a capture, appended in one transaction.
   void append_biometrics(std::int64_t capture_id, std::span<const BiometricSample> samples);
   std::vector<BiometricSample> load_biometrics(std::int64_t capture_id);
+
+  // ---- user studies (schema 8; docs/store.md "Study sessions") ----
+  // Each write is one short transaction; on a store another writer keeps
+  // busy past the busy timeout it throws a StoreError that sqlite::is_busy
+  // recognises, having written nothing: call it again.
+
+  // Opens the participant's session of this study: creates it (started now,
+  // with this knoblab's version and the protocol's SHA-256), or returns the
+  // existing one to resume - finished or not. Refuses (StoreError, saying
+  // what differs) when the existing session ran a different protocol file
+  // (its bytes' SHA-256 differs), has a different plan size or participant
+  // index, or is of a simulated participant and this one is not (or the
+  // other way round); and a participant that is not a pseudonymous code, a
+  // bad study id, plan_trials 0, a protocol that is not a JSON object whose
+  // "study" is `study`.
+  StudySession open_study_session(const NewStudySession& session);
+  std::optional<StudySession> study_session(std::int64_t session_id);
+  std::vector<StudySession> study_sessions(std::string_view study);  // all participants, by session_id
+
+  // The whole trial in one transaction, or nothing: a crash leaves it
+  // committed whole or not at all. Refuses (StoreError, storing nothing) an
+  // unknown session, an index already committed (the stored trial is kept),
+  // one outside 1 … plan_trials, a finished session, a JSON field that is not
+  // valid JSON (condition_json: not an object), times not finite or ending
+  // before they start, an unknown capture.
+  void commit_study_trial(const StudyTrial& trial);
+  std::vector<StudyTrial> study_trials(std::int64_t session_id);  // by trial_index
+  // Where a session resumes: the first plan index (1-based) with no committed
+  // trial; none when all are committed. Throws StoreError for an unknown session.
+  std::optional<std::size_t> next_study_trial(std::int64_t session_id);
+  // Sets finished_unix (now). Refuses while any trial of the plan is missing;
+  // a session already finished keeps its first finish time.
+  void finish_study_session(std::int64_t session_id);
+
+  // The experimenter's note, about the session or one trial of its plan
+  // (committed or not), finished or not; returns its id. Refuses an unknown
+  // session, a trial outside the plan, tags that are not a JSON array of
+  // strings, a note with neither text nor tags.
+  std::int64_t add_study_note(const StudyNote& note);
+  std::vector<StudyNote> study_notes(std::int64_t session_id);  // by note_id
 
   std::string integrity_check();  // "ok" when sqlite finds nothing wrong
 
