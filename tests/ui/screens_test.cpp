@@ -26,13 +26,15 @@ struct Shot {
 };
 
 Shot screenshot(const std::string& socket, const std::string& db, const std::string& screen,
-                const std::string& size, const std::filesystem::path& png, const std::string& wait = "20") {
+                const std::string& size, const std::filesystem::path& png, const std::string& wait = "20",
+                const std::vector<std::string>& more = {}) {
   ScratchDir logs;
-  const pid_t pid = test::spawn({KNOBLAB_UI_PATH, "--socket", socket, "--db", db, "--knoblab", KNOBLAB_CLI_PATH,
-                                 "--screen", screen, "--size", size, "--screenshot", png.string(), "--wait", wait},
-                                (logs / "out").string(), (logs / "err").string());
+  std::vector<std::string> args{KNOBLAB_UI_PATH, "--socket", socket, "--db", db, "--knoblab", KNOBLAB_CLI_PATH,
+                                "--screen", screen, "--size", size, "--screenshot", png.string(), "--wait", wait};
+  args.insert(args.end(), more.begin(), more.end());
+  const pid_t pid = test::spawn(args, (logs / "out").string(), (logs / "err").string());
   Shot s;
-  s.exit_code = test::wait_exit(pid, std::chrono::seconds(60));
+  s.exit_code = test::wait_exit(pid, std::chrono::seconds(150));
   s.out = test::read_file(logs / "out");
   s.err = test::read_file(logs / "err");
   s.image.load(QString::fromStdString(png.string()));
@@ -111,6 +113,67 @@ INSTANTIATE_TEST_SUITE_P(AtPanelSizes, Screens,
                            for (char& c : name)
                              if (c == 'x') c = '_';
                            return name;
+                         });
+
+// The user-study screens, each showing a real session: the protocol run in
+// simulated time (hapticd's core on the sim plant, the simulated participant's
+// hand on the knob) into a scratch store, paused where the screen shows what
+// it is for (knoblab-ui --study … --simulate --pause-at …).
+struct StudyShot {
+  const char* name;      // the PNG's and the test's name
+  const char* screen;    // study (the experimenter's view) or participant
+  const char* protocol;  // examples/studies/NAME.json
+  const char* pause_at;
+  const char* text;      // a named text and what it must begin with
+  const char* begins;
+};
+
+void PrintTo(const StudyShot& shot, std::ostream* os) { *os << shot.name; }
+
+class StudyScreens : public ::testing::TestWithParam<std::tuple<StudyShot, std::string>> {};
+
+TEST_P(StudyScreens, ShowARealSessionInSimulatedTime) {
+  const auto& [shot, size] = GetParam();
+  Hapticd daemon;
+  ASSERT_TRUE(daemon.ready()) << daemon.log();
+  std::filesystem::create_directories(KNOBLAB_UI_SCREENS_DIR);
+  const std::filesystem::path png =
+      std::filesystem::path(KNOBLAB_UI_SCREENS_DIR) / (std::string("study-") + shot.name + "-" + size + ".png");
+  std::filesystem::remove(png);
+  const std::string db = daemon.dir() + "/study.sqlite";
+  const Shot s = screenshot(daemon.socket(), db, shot.screen, size, png, "120",
+                            {"--studies", KNOBLAB_STUDY_EXAMPLES_DIR, "--study",
+                             std::string(KNOBLAB_STUDY_EXAMPLES_DIR) + "/" + shot.protocol + ".json", "--participant",
+                             "P07", "--simulate", "--pause-at", shot.pause_at});
+  EXPECT_EQ(s.exit_code, 0) << s.err << s.out;
+  ASSERT_FALSE(s.image.isNull()) << png;
+  EXPECT_EQ(std::to_string(s.image.width()) + "x" + std::to_string(s.image.height()), size);
+  EXPECT_TRUE(named(s.out, shot.text).starts_with(shot.begins)) << shot.text << " in\n" << s.out;
+  if (std::string(shot.screen) == "participant") {
+    // Nothing of the experimenter's on the participant's screen.
+    EXPECT_EQ(named(s.out, "connection"), "") << s.out;
+    EXPECT_EQ(named(s.out, "sessionState"), "") << s.out;
+  }
+}
+
+const StudyShot kStudyShots[] = {
+    {"experimenter", "study", "pointing", "trials:3", "sessionProgress", "trial 4 of 112 · block 1, practice"},
+    {"pointing", "participant", "pointing", "target", "instruction", "Move the needle onto the disk"},
+    {"list", "participant", "list-selection", "counter", "listTarget", "Find "},
+    {"matching", "participant", "matching-novice", "sliders", "reference", "Knob "},
+    {"sam", "participant", "list-selection", "rating", "rateMin", "← 1 unpleasant"},
+    {"affectgrid", "participant", "textures", "rating", "ratingPrompt", "How did it feel?"},
+    {"texture", "participant", "textures", "texture", "texture", ""},
+};
+
+INSTANTIATE_TEST_SUITE_P(AtPanelSizes, StudyScreens,
+                         ::testing::Combine(::testing::ValuesIn(kStudyShots),
+                                            ::testing::Values("1024x600", "1280x800")),
+                         [](const auto& p) {
+                           std::string size = std::get<1>(p.param);
+                           for (char& c : size)
+                             if (c == 'x') c = '_';
+                           return std::string(std::get<0>(p.param).name) + "_" + size;
                          });
 
 TEST(Screens, WithoutHapticdTheScreensStillRenderAndSayTheDaemonIsMissing) {

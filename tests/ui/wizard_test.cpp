@@ -27,6 +27,7 @@
 #include "event_loop.hpp"
 #include "process.hpp"
 #include "screen_check.hpp"
+#include "study_session.hpp"
 #include "telemetry_feed.hpp"
 
 namespace knoblab::ui {
@@ -139,13 +140,16 @@ struct Kiosk {
   Kiosk(const test::Hapticd& daemon, const QString& start, QSize panel)
       : link(options(daemon)),
         knobs(QString::fromStdString(daemon.db())),
-        jobs(KNOBLAB_CLI_PATH, QString::fromStdString(daemon.db())) {
+        jobs(KNOBLAB_CLI_PATH, QString::fromStdString(daemon.db())),
+        study({.db = QString::fromStdString(daemon.db()), .socket = QString::fromStdString(daemon.socket()),
+               .studiesDir = {}, .simulate = false, .pause_at = {}}) {
     QObject::connect(&link, &DaemonLink::telemetryNameChanged, &feed, [this] { feed.setRing(link.telemetryName()); });
     QObject::connect(&link, &DaemonLink::message, [this](const QString& t, const QString&) { messages << t; });
     engine.setInitialProperties({{"link", QVariant::fromValue(&link)},
                                  {"knobs", QVariant::fromValue(&knobs)},
                                  {"jobs", QVariant::fromValue(&jobs)},
                                  {"feed", QVariant::fromValue(&feed)},
+                                 {"study", QVariant::fromValue(&study)},
                                  {"startScreen", start},
                                  {"width", panel.width()},
                                  {"height", panel.height()}});
@@ -163,6 +167,7 @@ struct Kiosk {
   KnobLibrary knobs;
   JobRunner jobs;
   TelemetryFeed feed;
+  StudySession study;
   QStringList messages;
   QQmlApplicationEngine engine;
   QQuickWindow* window = nullptr;  // null: Main did not load

@@ -46,6 +46,12 @@ Item {
                 onActivated: home.open("library")
             }
             BigButton {
+                objectName: "studyButton"
+                label: "User study"
+                detail: "run a participant's session: experimenter and participant views"
+                onActivated: home.open("study")
+            }
+            BigButton {
                 objectName: "systemButton"
                 label: "System"
                 detail: "loop timing, faults, calibration"

@@ -11,6 +11,7 @@ ApplicationWindow {
     required property KnobLibrary knobs
     required property JobRunner jobs
     required property TelemetryFeed feed
+    required property StudySession study
     // The screen shown first (knoblab-ui --screen): home, or one above it.
     required property string startScreen
 
@@ -26,8 +27,12 @@ ApplicationWindow {
             library: libraryScreen,
             capture: captureScreen,
             review: reviewScreen,
-            compare: compareScreen
+            compare: compareScreen,
+            study: studyScreen,
+            participant: participantScreen
         })
+    // The participant's view takes the whole screen: no status strip, no message bar.
+    readonly property bool participantView: stack.currentItem !== null && stack.currentItem.objectName === "participantScreen"
 
     function open(name, properties) {
         const screen = window.screens[name];
@@ -47,6 +52,7 @@ ApplicationWindow {
     }
 
     header: StatusStrip {
+        visible: !window.participantView
         link: window.link
         onHomeRequested: stack.pop(null)
     }
@@ -98,6 +104,21 @@ ApplicationWindow {
         }
     }
     Component {
+        id: studyScreen
+        StudyScreen {
+            study: window.study
+            keyboardUp: keyboard.active
+            onParticipantView: window.open("participant")
+        }
+    }
+    Component {
+        id: participantScreen
+        ParticipantScreen {
+            study: window.study
+            onLeave: stack.pop()
+        }
+    }
+    Component {
         id: reviewScreen
         ReviewScreen {
             knobs: window.knobs
@@ -113,8 +134,8 @@ ApplicationWindow {
         anchors.right: parent.right
         anchors.top: parent.top
         // Above the keyboard while it is up: the field being typed in stays in sight.
-        anchors.bottom: keyboard.active ? keyboard.top : bar.visible ? bar.top : parent.bottom
-        anchors.bottomMargin: bar.visible && !keyboard.active ? Theme.gap : 0
+        anchors.bottom: keyboard.active ? keyboard.top : bar.visible && !window.participantView ? bar.top : parent.bottom
+        anchors.bottomMargin: bar.visible && !keyboard.active && !window.participantView ? Theme.gap : 0
         initialItem: homeScreen
         Component.onCompleted: if (window.startScreen !== "home")
             window.open(window.startScreen)
@@ -122,6 +143,9 @@ ApplicationWindow {
 
     MessageBar {
         id: bar
+        // Not for the participant's eyes: it waits under their view.
+        opacity: window.participantView ? 0 : 1
+        enabled: !window.participantView
         anchors.left: parent.left
         anchors.right: parent.right
         anchors.bottom: parent.bottom
@@ -149,6 +173,12 @@ ApplicationWindow {
         function onEvent(name: string, data: var) {
             if (name === "capture_finished")
                 window.knobs.refresh();
+        }
+    }
+    Connections {
+        target: window.study
+        function onMessage(text: string, level: string) {
+            bar.show(text, level);
         }
     }
     Connections {

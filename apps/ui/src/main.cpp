@@ -16,6 +16,7 @@
 #include "daemon_link.hpp"
 #include "job_runner.hpp"
 #include "knob_library.hpp"
+#include "study_session.hpp"
 #include "telemetry_feed.hpp"
 #include "knoblab/version.hpp"
 #include "screen_check.hpp"
@@ -38,10 +39,11 @@ void keep_warnings(QtMsgType type, const QMessageLogContext& context, const QStr
 // job the screen started are done (or the wait is over), writes the PNG and
 // checks it. Exit status: 0 all well, 1 a problem.
 int screenshot(QQuickWindow& window, knoblab::ui::DaemonLink& link, const knoblab::ui::KnobLibrary& library,
-               const knoblab::ui::JobRunner& jobs, const UiOptions& o) {
+               const knoblab::ui::JobRunner& jobs, const knoblab::ui::StudySession& study, const UiOptions& o) {
   QElapsedTimer waited;
   waited.start();
-  while ((link.state().isEmpty() || library.loading() || jobs.running()) &&
+  // A simulated study session runs until it pauses where it was asked to.
+  while ((link.state().isEmpty() || library.loading() || jobs.running() || study.settling()) &&
          waited.elapsed() < static_cast<qint64>(o.wait_s * 1000))
     QCoreApplication::processEvents(QEventLoop::AllEvents, 50);
   // Let bindings settle and animations (the message bar's) finish.
@@ -68,6 +70,11 @@ int screenshot(QQuickWindow& window, knoblab::ui::DaemonLink& link, const knobla
   }
   for (const QString& line : knoblab::ui::named_texts(window.contentItem())) std::printf("%s\n", qPrintable(line));
   if (link.state().isEmpty()) std::fprintf(stderr, "knoblab-ui: no state from hapticd within %g s\n", o.wait_s);
+  if (study.settling()) {
+    std::fprintf(stderr, "knoblab-ui: the study session did not reach %s within %g s\n", o.study_pause_at.c_str(),
+                 o.wait_s);
+    status = 1;
+  }
   return status;
 }
 
@@ -108,6 +115,11 @@ int main(int argc, char** argv) {
   knoblab::ui::KnobLibrary library(QString::fromStdString(o.db));
   knoblab::ui::JobRunner jobs(QString::fromStdString(o.knoblab), QString::fromStdString(o.db));
   knoblab::ui::TelemetryFeed feed;
+  knoblab::ui::StudySession study({.db = QString::fromStdString(o.db),
+                                   .socket = QString::fromStdString(o.socket),
+                                   .studiesDir = QString::fromStdString(o.studies),
+                                   .simulate = o.study_simulate,
+                                   .pause_at = QString::fromStdString(o.study_pause_at)});
   QObject::connect(&link, &knoblab::ui::DaemonLink::telemetryNameChanged, &feed,
                    [&] { feed.setRing(link.telemetryName()); });
 
@@ -116,6 +128,7 @@ int main(int argc, char** argv) {
                                {QStringLiteral("knobs"), QVariant::fromValue(&library)},
                                {QStringLiteral("jobs"), QVariant::fromValue(&jobs)},
                                {QStringLiteral("feed"), QVariant::fromValue(&feed)},
+                               {QStringLiteral("study"), QVariant::fromValue(&study)},
                                {QStringLiteral("startScreen"), QString::fromStdString(o.screen)},
                                {QStringLiteral("width"), o.width},
                                {QStringLiteral("height"), o.height}});
@@ -125,7 +138,9 @@ int main(int argc, char** argv) {
   if (engine.rootObjects().isEmpty()) return 2;
   auto* window = qobject_cast<QQuickWindow*>(engine.rootObjects().first());
   if (!window) return 2;
-  if (!o.screenshot.empty()) return screenshot(*window, link, library, jobs, o);
+  if (!o.study_protocol.empty())
+    study.start(QString::fromStdString(o.study_protocol), QString::fromStdString(o.study_participant));
+  if (!o.screenshot.empty()) return screenshot(*window, link, library, jobs, study, o);
   if (o.fullscreen) window->showFullScreen();
   else window->show();
   QTimer status;

@@ -1,6 +1,7 @@
 #include "ui_options.hpp"
 
 #include <cstdio>
+#include <filesystem>
 #include <stdexcept>
 
 namespace knoblab::ui {
@@ -8,7 +9,8 @@ namespace knoblab::ui {
 std::string ui_usage() {
   return "usage: knoblab-ui [--socket PATH] [--db FILE] [--knoblab PATH] [--no-supervise] [--fullscreen]\n"
          "                  [--size WxH] [--screen NAME] [--screenshot OUT.png [--wait SECONDS]]\n"
-         "                  [--status-file FILE]\n"
+         "                  [--status-file FILE] [--studies DIR]\n"
+         "                  [--study PROTOCOL.json [--participant CODE] [--simulate [--pause-at WHAT]]]\n"
          "\n"
          "The knoblab touchscreen front-end. It talks to hapticd through its control socket\n"
          "(default /run/knoblab/hapticd.sock) and supervises it: if the UI stops, the motor\n"
@@ -16,7 +18,12 @@ std::string ui_usage() {
          "(--db, default /var/lib/knoblab/lab.sqlite) and runs fits and discrepancy with the\n"
          "knoblab command (--knoblab, default: knoblab on the PATH), which store their results\n"
          "there. Screens: home, system, capture, library, review (the newest capture),\n"
-         "compare (the two newest).\n"
+         "compare (the two newest), study (the experimenter's view of a user study),\n"
+         "participant (the participant's view).\n"
+         "--studies names the folder of study protocols offered (default: the installed examples).\n"
+         "--study starts CODE's session of the protocol (default P01; it resumes when it exists);\n"
+         "--simulate runs it in simulated time with the simulated participant (no hapticd), pausing\n"
+         "at --pause-at: target, counter, freeform, sliders, texture, rating or trials:N.\n"
          "--screenshot renders the first screen offscreen at --size, waits up to --wait s\n"
          "(default 5) for hapticd's state and the screen's job, writes the PNG, checks that no text is clipped and\n"
          "no QML warning was printed, and exits 0 (all well), 1 (a problem, printed) or 2.\n"
@@ -39,6 +46,11 @@ UiOptions parse_ui_options(const std::vector<std::string>& args) {
     else if (a == "--screen") o.screen = need(i);
     else if (a == "--screenshot") o.screenshot = need(i);
     else if (a == "--status-file") o.status_file = need(i);
+    else if (a == "--studies") o.studies = need(i);
+    else if (a == "--study") o.study_protocol = need(i);
+    else if (a == "--participant") o.study_participant = need(i);
+    else if (a == "--simulate") o.study_simulate = true;
+    else if (a == "--pause-at") o.study_pause_at = need(i);
     else if (a == "--help" || a == "-h") o.help = true;
     else if (a == "--version") o.version = true;
     else if (a == "--size") {
@@ -58,6 +70,9 @@ UiOptions parse_ui_options(const std::vector<std::string>& args) {
       throw std::invalid_argument("unknown option '" + a + "'");
     }
   }
+  if (o.studies.empty())
+    o.studies = std::filesystem::is_directory(KNOBLAB_UI_STUDIES_DIR) ? KNOBLAB_UI_STUDIES_DIR
+                                                                       : KNOBLAB_UI_SOURCE_STUDIES_DIR;
   return o;
 }
 

@@ -21,6 +21,16 @@ struct UiOptions {
   // Every second, what the screen shows (its named texts) as JSON, written
   // atomically: how a test or a remote look tells what the kiosk displays.
   std::string status_file;
+  // The study protocols offered (default: where the package installs them,
+  // or the source tree's examples/studies when that is missing).
+  std::string studies;
+  // Start this participant's session of this protocol at once; with
+  // study_simulate in simulated time (hapticd's core and the simulated
+  // participant, no hapticd), pausing at study_pause_at (target, counter,
+  // freeform, sliders, texture, rating, trials:N): a dry run, and how the
+  // screenshot tests show a real session.
+  std::string study_protocol, study_participant = "P01", study_pause_at;
+  bool study_simulate = false;
   bool help = false, version = false;
 };
 
