@@ -215,11 +215,7 @@ struct Unreachable : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-std::string socket_path(const Args& args) {
-  if (auto s = args.get("socket")) return *s;
-  if (const char* env = std::getenv("KNOBLAB_SOCKET"); env && *env) return env;
-  return kDefaultSocket;
-}
+std::string socket_path(const Args& args) { return hapticd_socket(args); }
 
 control::Client connect(const std::string& path, milliseconds timeout) {
   struct stat st {};
@@ -418,6 +414,12 @@ int run_ctl(const Args& args) {
     std::cerr << "knoblab ctl: cannot reach hapticd: " << e.what() << "\n";
     return kExitUnreachable;
   }
+}
+
+std::string hapticd_socket(const Args& args) {
+  if (auto s = args.get("socket")) return *s;
+  if (const char* env = std::getenv("KNOBLAB_SOCKET"); env && *env) return env;
+  return kDefaultSocket;
 }
 
 }  // namespace knoblab::cli

@@ -18,7 +18,7 @@ const std::vector<Command>& commands();
 
 extern const CommandSpec kSimulateSpec, kImportSpec, kExportSpec, kInspectSpec, kDemoSpec,
     kListSpec, kConvertSpec, kFitSpec, kFitsSpec, kFitExportSpec, kDiscrepancySpec, kCtlSpec, kCompareSpec,
-    kResultsSpec;
+    kResultsSpec, kStudySpec;
 int run_simulate(const Args&);
 int run_import(const Args&);
 int run_export(const Args&);
@@ -33,5 +33,9 @@ int run_results(const Args&);
 int run_discrepancy(const Args&);
 int run_ctl(const Args&);
 int run_compare(const Args&);
+int run_study(const Args&);
+
+// hapticd's control socket: --socket, else $KNOBLAB_SOCKET, else /run/knoblab/hapticd.sock.
+std::string hapticd_socket(const Args& args);
 
 }  // namespace knoblab::cli

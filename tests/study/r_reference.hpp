@@ -71,4 +71,50 @@ inline nlohmann::json r_pointing_reference(const std::vector<PointingRow>& rows,
   return result;
 }
 
+using json = nlohmann::json;
+
+inline constexpr double kRelative = 1e-6;
+
+// Every key and value of `ours` (but its notes, sentences for people) is in
+// `ref` with the same value, numbers to kRelative, and `ref` has nothing
+// more; returns how many numbers were compared.
+inline std::size_t expect_same(const json& ours, const json& ref, const std::string& path) {
+  std::size_t numbers = 0;
+  if (ours.is_object()) {
+    if (!ref.is_object()) {
+      ADD_FAILURE() << path << ": R gives " << ref.dump() << ", not an object";
+      return 0;
+    }
+    for (const auto& [key, value] : ours.items()) {
+      if (key == "notes") continue;
+      if (!ref.contains(key)) {
+        ADD_FAILURE() << path << "." << key << ": not in R's report";
+        continue;
+      }
+      numbers += expect_same(value, ref.at(key), path + "." + key);
+    }
+    for (const auto& [key, value] : ref.items())
+      if (!ours.contains(key)) ADD_FAILURE() << path << "." << key << ": only in R's report, " << value.dump();
+  } else if (ours.is_array()) {
+    if (!ref.is_array() || ref.size() != ours.size()) {
+      ADD_FAILURE() << path << ": " << ours.size() << " items, R gives " << ref.dump();
+      return 0;
+    }
+    for (std::size_t i = 0; i < ours.size(); ++i)
+      numbers += expect_same(ours[i], ref[i], std::format("{}[{}]", path, i));
+  } else if (ours.is_number()) {
+    if (!ref.is_number()) {
+      ADD_FAILURE() << path << ": ours " << ours.dump() << ", R gives " << ref.dump();
+      return 0;
+    }
+    const double a = ours.get<double>(), b = ref.get<double>();
+    const double tolerance = b == 0 ? 1e-12 : kRelative * std::abs(b);
+    EXPECT_LE(std::abs(a - b), tolerance) << path << std::format(": ours {:.17g}, R {:.17g}", a, b);
+    ++numbers;
+  } else {
+    EXPECT_EQ(ours, ref) << path;
+  }
+  return numbers;
+}
+
 }  // namespace knoblab::study::test

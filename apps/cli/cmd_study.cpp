@@ -1,0 +1,229 @@
+// knoblab study: the user studies from the command line — simulated
+// participants run through hapticd, the sessions in a store, the tidy export
+// and the analysis (docs/studies.md).
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <format>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <iostream>
+#include <sstream>
+
+#include "cancel.hpp"
+#include "commands.hpp"
+#include "figure_args.hpp"
+#include "knoblab/hal/shared_hand_channel.hpp"
+#include "knoblab/study/participant.hpp"
+#include "knoblab/study/protocol.hpp"
+#include "knoblab/study/shuffle.hpp"
+#include "knoblab/study/pointing_plots.hpp"
+#include "knoblab/study/pointing_report.hpp"
+#include "knoblab/studyrun/core_apparatus.hpp"
+#include "knoblab/studyrun/export.hpp"
+#include "knoblab/studyrun/hapticd_apparatus.hpp"
+#include "knoblab/studyrun/session.hpp"
+#include "knoblab/studyrun/simulated_participant.hpp"
+#include "store_open.hpp"
+
+namespace knoblab::cli {
+
+const CommandSpec kStudySpec{
+    "study",
+    "simulate PROTOCOL.json --participants N --db FILE.sqlite [--socket PATH] [--hand NAME] |\n"
+    "       sessions STUDY --db FILE.sqlite | export STUDY --db FILE.sqlite --out FILE.csv |\n"
+    "       report STUDY --db FILE.sqlite --out DIR [--json FILE|-] [--format pdf,svg,png]",
+    "Run user studies with simulated participants; list, export and analyse them.\n"
+    "simulate: each participant (codes SIM01, SIM02, …, or from --first) runs the\n"
+    "protocol's whole plan through hapticd, which must run on the sim backend with\n"
+    "a guided hand (daq config \"hand\": {\"channel\": NAME}); the simulated\n"
+    "participant turns the knob through that hand. Every trial is committed to the\n"
+    "store as it ends; run the same command again after an interruption and each\n"
+    "session resumes at the trial that was running. The store must be hapticd's\n"
+    "(trials refer to the captures it records). --in-process runs hapticd's core on\n"
+    "the sim plant in simulated time instead, without a daemon, a box or captures:\n"
+    "a dry run of a whole protocol with many participants in minutes.\n"
+    "sessions: each participant's session of STUDY: trials committed of the plan.\n"
+    "export: the committed trials as a tidy CSV (docs/studies.md): the pointing study\n"
+    "one row per target acquisition, other kinds one row per trial.\n"
+    "report: the pointing study's analysis (thesis §4.6.2): Fitts' law per rendering\n"
+    "with effective widths, the repeated-measures ANOVA of movement time, the rating\n"
+    "tests and correlations, printed, as JSON with --json, and as figures in DIR.",
+    with_figure_options({{"db", true, "the sqlite store (hapticd's)"},
+     {"participants", true, "how many simulated participants (default 1)"},
+     {"first", true, "the first participant's number (default 1: SIM01)"},
+     {"max-trials", true, "stop each session after this many trials this run (default: all)"},
+     {"socket", true, "hapticd's control socket (default $KNOBLAB_SOCKET, else /run/knoblab/hapticd.sock)"},
+     {"hand", true, "the sim backend's hand channel (default /knoblab-sim-hand)"},
+     {"in-process", false, "simulate: hapticd's core in simulated time, no daemon (no captures, no biometrics)"},
+     {"out", true, "export: the CSV file; report: the directory for the figures"},
+     {"json", true, "report: write the analysis as JSON; '-' for stdout"}},
+                        "out"),
+    2, 2, false,
+    {"knoblab study simulate examples/studies/pointing.json --participants 2 --db /var/lib/knoblab/knoblab.sqlite",
+     "knoblab study sessions rotary-pointing --db /var/lib/knoblab/knoblab.sqlite",
+     "knoblab study export rotary-pointing --db /var/lib/knoblab/knoblab.sqlite --out trials.csv",
+     "knoblab study report rotary-pointing --db /var/lib/knoblab/knoblab.sqlite --out report/ --json report.json"}};
+
+namespace {
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path + ": cannot read");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string simulated_code(long long n) { return std::format("SIM{:02}", n); }
+
+int simulate(const Args& args, const std::string& protocol_path) {
+  const std::string text = read_text(protocol_path);
+  const study::Protocol protocol = [&] {
+    try {
+      return study::parse_protocol_text(text);
+    } catch (const study::ProtocolError& e) {
+      throw e.in_file(protocol_path);
+    }
+  }();
+  const long long participants = args.integer("participants", 1);
+  const long long first = args.integer("first", 1);
+  if (participants < 1 || participants > 999) throw UsageError("--participants must be 1 … 999");
+  if (first < 1 || first + participants - 1 > 999) throw UsageError("--first must be 1 … 999");
+  const long long max_trials = args.integer("max-trials", 0);
+  if (max_trials < 0) throw UsageError("--max-trials must be ≥ 0");
+  // Through hapticd the store is hapticd's (the trials refer to its
+  // captures), so it must exist; a dry run may start a new one.
+  store::Store db = args.has("in-process") ? store::Store::open(args.require("db")) : open_store_to_add(args.require("db"));
+  // The knob's apparatus and the hand on it: hapticd and its sim backend's
+  // shared hand channel, or hapticd's core here in simulated time.
+  std::optional<hal::SharedHandChannel> shared_hand;
+  std::unique_ptr<studyrun::Apparatus> apparatus;
+  sim::HandChannel* hand = nullptr;
+  if (args.has("in-process")) {
+    auto core = std::make_unique<studyrun::CoreApparatus>();
+    hand = &core->hand();
+    apparatus = std::move(core);
+  } else {
+    shared_hand.emplace(args.get("hand").value_or("/knoblab-sim-hand"));
+    hand = &shared_hand->channel();
+    apparatus = std::make_unique<studyrun::HapticdApparatus>(hapticd_socket(args));
+  }
+  CancelOnSignal on_signal;  // Ctrl-C stops at the next reading; the running trial is not committed
+  for (long long n = first; n < first + participants; ++n) {
+    const std::string code = simulated_code(n);
+    const auto index = static_cast<std::size_t>(n - 1);
+    studyrun::SimulatedParticipant participant(
+        *hand, studyrun::ParticipantModel::draw(study::participant_seed(protocol.seed, code)),
+        study::participant_seed(protocol.seed, code) ^ 0xA11CEull);
+    studyrun::SessionOptions options;
+    options.simulated = true;
+    options.max_trials = static_cast<std::size_t>(max_trials);
+    options.cancelled = cancel_requested;
+    options.on_trial_committed = [&](const store::StudyTrial& t) {
+      std::cerr << "\r" << code << ": trial " << t.trial_index << " committed" << std::flush;
+    };
+    const studyrun::SessionResult r = studyrun::run_session(db, protocol, text, code, index, *apparatus, participant, options);
+    participant.release();
+    std::cerr << "\r";
+    std::cout << code << ": session " << r.session_id << ", " << r.trials_run << " trials run"
+              << (r.resumed_at > 1 ? " (resumed at trial " + std::to_string(r.resumed_at) + ")" : "")
+              << (r.finished ? ", finished" : ", not finished") << "\n";
+  }
+  return 0;
+}
+
+int sessions(const Args& args, const std::string& study_id) {
+  store::Store db = open_store_to_read(args.require("db"));
+  const auto list = db.study_sessions(study_id);
+  if (list.empty()) {
+    std::cout << "no sessions of " << study_id << "\n";
+    return 0;
+  }
+  std::cout << "session  participant  trials     state\n";
+  for (const store::StudySession& s : list) {
+    char line[128];
+    std::snprintf(line, sizeof line, "%7lld  %-11s  %4zu/%-4zu  %s%s\n", static_cast<long long>(s.session_id),
+                  s.participant.c_str(), s.trials_committed, s.plan_trials,
+                  s.finished_unix ? "finished" : "open", s.simulated ? " (simulated)" : "");
+    std::cout << line;
+  }
+  return 0;
+}
+
+// Written whole or not at all: a half-written CSV must not pass for an export.
+void write_atomically(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".part";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!(out << text) || !out.flush()) throw std::runtime_error(path + ": cannot write");
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+int export_trials(const Args& args, const std::string& study_id) {
+  store::Store db = open_store_to_read(args.require("db"));
+  const std::string path = args.require("out");
+  std::ostringstream csv;
+  const study::Protocol protocol = studyrun::stored_protocol(db, study_id);
+  std::size_t rows = 0;
+  if (protocol.kind == study::Kind::Pointing) {
+    const auto table = studyrun::pointing_rows(db, study_id);
+    study::write_pointing_csv(csv, table);
+    rows = table.size();
+  } else {
+    studyrun::write_trials_csv(csv, db, study_id);
+    const std::string text = csv.str();
+    rows = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) - 1;
+  }
+  write_atomically(path, csv.str());
+  std::cout << path << ": " << rows << (protocol.kind == study::Kind::Pointing ? " acquisitions" : " trials") << "\n";
+  return 0;
+}
+
+int report(const Args& args, const std::string& study_id) {
+  store::Store db = open_store_to_read(args.require("db"));
+  const std::string dir = args.require("out");
+  const study::Protocol protocol = studyrun::stored_protocol(db, study_id);
+  if (protocol.kind != study::Kind::Pointing)
+    throw std::runtime_error("study report analyses pointing studies; '" + study_id + "' is a " +
+                             std::string(study::kind_name(protocol.kind)) +
+                             " study: export it (knoblab study export) for R or pandas");
+  const auto rows = studyrun::pointing_rows(db, study_id);
+  study::PointingReportOptions options;
+  const auto& settings = std::get<study::PointingSettings>(protocol.settings);
+  for (std::size_t f = 0; f < protocol.factors.size(); ++f)
+    if (f != settings.amplitude_factor && f != settings.width_factor) {
+      for (const study::Level& l : protocol.factors[f].levels) options.rendering_order.push_back(l.name);
+      break;
+    }
+  const study::PointingReport r = study::pointing_report(rows, options);
+  const auto files = study::write_pointing_plots(r, rows, dir, figure_options(args, "out"));
+  if (auto json_path = args.get("json")) {
+    const std::string text = study::to_json(r).dump(2) + "\n";
+    if (*json_path == "-")
+      std::cout << text;
+    else
+      write_atomically(*json_path, text);
+  }
+  if (args.get("json").value_or("") != "-") {
+    std::cout << study::format_pointing_report(r);
+    for (const auto& f : files) std::cout << "wrote " << f.string() << "\n";
+  }
+  return 0;
+}
+
+}  // namespace
+
+int run_study(const Args& args) {
+  const std::string& action = args.positionals().at(0);
+  const std::string& target = args.positionals().at(1);
+  if (action == "simulate") return simulate(args, target);
+  if (action == "sessions") return sessions(args, target);
+  if (action == "export") return export_trials(args, target);
+  if (action == "report") return report(args, target);
+  throw UsageError("study: unknown action '" + action + "' (simulate, sessions, export, report)");
+}
+
+}  // namespace knoblab::cli

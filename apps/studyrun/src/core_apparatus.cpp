@@ -1,0 +1,98 @@
+#include "knoblab/studyrun/core_apparatus.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "knoblab/capture/sim_daq.hpp"
+#include "knoblab/hapticd/core.hpp"
+#include "knoblab/hapticd/supervisor.hpp"
+#include "knoblab/sim/presets.hpp"
+
+namespace knoblab::studyrun {
+
+struct CoreApparatus::Impl {
+  Impl(const sim::presets::Preset& preset, double rate) : daq(config(preset), rate), core(core_config(daq, rate)) {
+    daq.plant().add_effect(sim::make_guided_hand(hand));
+    cycles_per_reading = std::max<long>(1, std::lround(rate / 1000.0));
+  }
+  static sim::PlantConfig config(const sim::presets::Preset& preset) {
+    sim::PlantConfig c;
+    c.knob = preset.knob;
+    return c;
+  }
+  static hapticd::CoreConfig core_config(const capture::SimDaq& daq, double rate) {
+    hapticd::CoreConfig c;
+    c.rate_hz = rate;
+    c.calibration = daq.calibration();
+    return c;
+  }
+  void post(const hapticd::CoreCommand& c) {
+    if (!core.post(c)) throw ApparatusError("hapticd's core did not take a command (its queue is full)");
+  }
+
+  sim::HandChannel hand;
+  capture::SimDaq daq;
+  hapticd::HapticCore core;
+  long cycles_per_reading = 1;
+  bool render_mode = false;
+};
+
+CoreApparatus::CoreApparatus(const std::string& knob, double rate_hz) {
+  const sim::presets::Preset* preset = sim::presets::find(knob);
+  if (!preset) throw std::invalid_argument("no sim knob preset '" + knob + "' (knoblab simulate --list)");
+  if (!(rate_hz >= 1000 && rate_hz <= 100000)) throw std::invalid_argument("the loop rate must be 1–100 kHz");
+  impl_ = std::make_unique<Impl>(*preset, rate_hz);
+}
+
+CoreApparatus::~CoreApparatus() = default;
+
+sim::HandChannel& CoreApparatus::hand() { return impl_->hand; }
+
+void CoreApparatus::render(const study::Rendering& r) {
+  hapticd::CoreCommand c;
+  c.kind = hapticd::CoreCommand::SetRender;
+  c.render.M_acc = r.M_acc;
+  c.render.B_vel = r.B_vel;
+  c.render.A_pos = r.detents_per_rev > 0 ? r.A_pos : 0.0;
+  c.render.P_pos = r.detents_per_rev > 0 ? 1.0 / r.detents_per_rev : 1.0;
+  impl_->post(c);
+  if (!impl_->render_mode) {
+    hapticd::CoreCommand m;
+    m.kind = hapticd::CoreCommand::SetMode;
+    m.mode = hapticd::Mode::Render;
+    impl_->post(m);
+    impl_->render_mode = true;
+  }
+}
+
+void CoreApparatus::start_trial(const TrialLabel&) {
+  hapticd::CoreCommand c;
+  c.kind = hapticd::CoreCommand::StartRecording;
+  impl_->post(c);
+}
+
+TrialRecording CoreApparatus::stop_trial() {
+  hapticd::CoreCommand c;
+  c.kind = hapticd::CoreCommand::StopRecording;
+  impl_->post(c);
+  return {.capture_id = std::nullopt, .complete = true, .end_reason = ""};
+}
+
+KnobReading CoreApparatus::next() {
+  hapticd::LoopRecord rec;
+  for (long i = 0; i < impl_->cycles_per_reading; ++i) {
+    capture::DaqInputs in;
+    capture::DaqOutputs out;
+    hapticd::CycleContext ctx;
+    ctx.io_ok = impl_->daq.read(in) == capture::IoStatus::ok;
+    impl_->core.cycle(in, ctx, out, rec);
+    (void)impl_->daq.write(out);
+  }
+  if (rec.faults != 0) {
+    impl_->render_mode = false;
+    throw ApparatusError("hapticd's core latched a fault (" + hapticd::fault_list(rec.faults) + ")");
+  }
+  return {rec.sample.t, rec.sample.theta, rec.sample.omega, rec.sample.torque};
+}
+
+}  // namespace knoblab::studyrun

@@ -1,0 +1,170 @@
+#include "knoblab/studyrun/export.hpp"
+
+#include <algorithm>
+#include <format>
+#include <map>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+namespace knoblab::studyrun {
+
+namespace {
+
+using nlohmann::json;
+
+struct SessionTrials {
+  store::StudySession session;
+  std::vector<store::StudyTrial> trials;
+};
+
+std::vector<SessionTrials> load(store::Store& store, std::string_view study) {
+  std::vector<SessionTrials> out;
+  for (store::StudySession& s : store.study_sessions(study)) {
+    auto trials = store.study_trials(s.session_id);
+    out.push_back({std::move(s), std::move(trials)});
+  }
+  if (out.empty()) throw std::invalid_argument("the store has no session of study '" + std::string(study) + "'");
+  for (const SessionTrials& s : out)
+    if (s.session.protocol_sha256 != out.front().session.protocol_sha256)
+      throw std::invalid_argument("the sessions of study '" + std::string(study) +
+                                  "' ran different protocol files (participants " + out.front().session.participant +
+                                  " and " + s.session.participant + "); export them apart");
+  return out;
+}
+
+std::optional<double> micro(const json& score, const char* key) {
+  if (!score.contains(key) || !score[key].is_number()) return std::nullopt;
+  return score[key].get<double>() * 1e6;
+}
+
+// The pointing factor that is neither the amplitude nor the width.
+std::size_t rendering_factor(const study::Protocol& p) {
+  const auto& s = std::get<study::PointingSettings>(p.settings);
+  for (std::size_t f = 0; f < p.factors.size(); ++f)
+    if (f != s.amplitude_factor && f != s.width_factor) return f;
+  throw std::invalid_argument("the pointing protocol has no rendering factor besides amplitude and width");
+}
+
+std::string csv_number(double v) { return std::format("{}", v); }
+
+std::string csv_field(const json& v) {
+  if (v.is_null()) return "";
+  if (v.is_boolean()) return v.get<bool>() ? "1" : "0";
+  if (v.is_number_integer()) return std::to_string(v.get<long long>());
+  if (v.is_number()) return csv_number(v.get<double>());
+  std::string s = v.is_string() ? v.get<std::string>() : v.dump();
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+}  // namespace
+
+study::Protocol stored_protocol(store::Store& store, std::string_view study) {
+  return study::parse_protocol_text(load(store, study).front().session.protocol_json);
+}
+
+std::vector<study::PointingRow> pointing_rows(store::Store& store, std::string_view study) {
+  const auto sessions = load(store, study);
+  const study::Protocol p = study::parse_protocol_text(sessions.front().session.protocol_json);
+  if (p.kind != study::Kind::Pointing)
+    throw std::invalid_argument("study '" + std::string(study) + "' is a " + std::string(study::kind_name(p.kind)) +
+                                " study, not pointing");
+  const std::string rendering = p.factors[rendering_factor(p)].name;
+  const std::string scale(study::scale_name(p.ratings.front().scale));
+  std::vector<study::PointingRow> rows;
+  for (const SessionTrials& s : sessions)
+    for (const store::StudyTrial& t : s.trials) {
+      const json condition = json::parse(t.condition_json);
+      const json measures = json::parse(t.result_json);
+      const json ratings = json::parse(t.ratings_json);
+      const json bio = json::parse(t.biometrics_json);
+      const json score = bio.value("score", json::object());
+      for (const json& a : measures.at("acquisitions")) {
+        if (!a.at("movement_time_s").is_number()) continue;  // never reached
+        study::PointingRow r;
+        r.participant = s.session.participant;
+        r.session = 1;  // one session per participant and study
+        r.block = static_cast<unsigned>(t.block);
+        r.trial = static_cast<unsigned>(t.trial_index);
+        r.practice = t.practice;
+        r.stage = t.stage;
+        r.rendering = condition.at(rendering).get<std::string>();
+        r.amplitude_deg = a.at("amplitude_deg").get<double>();
+        r.width_deg = a.at("width_deg").get<double>();
+        r.acquisition = a.at("acquisition").get<unsigned>();
+        r.direction = a.at("direction").get<int>();
+        r.movement_time_s = a.at("movement_time_s").get<double>();
+        r.endpoint_deg = a.at("endpoint_deg").get<double>();
+        r.overshoot_deg = a.at("overshoot_deg").get<double>();
+        r.rating = ratings.at(scale).get<int>();
+        r.emg_uV = micro(score, "emg_V");
+        r.sc_uS = micro(score, "sc_S");
+        rows.push_back(std::move(r));
+      }
+    }
+  return rows;
+}
+
+void write_trials_csv(std::ostream& out, store::Store& store, std::string_view study) {
+  const auto sessions = load(store, study);
+  const study::Protocol p = study::parse_protocol_text(sessions.front().session.protocol_json);
+  // Measures and ratings become columns in the order they first appear.
+  std::vector<std::string> measures, ratings;
+  std::vector<std::pair<const SessionTrials*, const store::StudyTrial*>> all;
+  auto note = [](std::vector<std::string>& names, const std::string& name) {
+    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  };
+  auto flat = [](const json& object, const std::string& prefix, auto&& add) {
+    for (const auto& [k, v] : object.items())
+      if (v.is_primitive()) add(prefix + k, v);
+  };
+  for (const SessionTrials& s : sessions)
+    for (const store::StudyTrial& t : s.trials) {
+      all.push_back({&s, &t});
+      const json m = json::parse(t.result_json);
+      flat(m, "", [&](const std::string& k, const json&) { note(measures, k); });
+      if (m.contains("sliders")) flat(m["sliders"], "slider_", [&](const std::string& k, const json&) { note(measures, k); });
+      const json rated = json::parse(t.ratings_json);
+      for (const auto& [k, v] : rated.items()) {
+        if (v.is_object())
+          for (const auto& [axis, _] : v.items()) note(ratings, k + "_" + axis);
+        else
+          note(ratings, k);
+      }
+    }
+  out << "participant,session,block,trial,practice,stage";
+  for (const study::Factor& f : p.factors) out << "," << f.name;
+  out << ",started_unix,duration_s";
+  for (const std::string& m : measures) out << "," << m;
+  for (const std::string& r : ratings) out << "," << r;
+  out << ",emg_uV,sc_uS,capture_id\n";
+  for (const auto& [s, t] : all) {
+    const json condition = json::parse(t->condition_json);
+    json values = json::object();
+    const json m = json::parse(t->result_json);
+    flat(m, "", [&](const std::string& k, const json& v) { values[k] = v; });
+    if (m.contains("sliders")) flat(m["sliders"], "slider_", [&](const std::string& k, const json& v) { values[k] = v; });
+    const json rated = json::parse(t->ratings_json);
+    for (const auto& [k, v] : rated.items()) {
+      if (v.is_object())
+        for (const auto& [axis, a] : v.items()) values[k + "_" + axis] = a;
+      else
+        values[k] = v;
+    }
+    const json score = json::parse(t->biometrics_json).value("score", json::object());
+    out << csv_field(s->session.participant) << ",1," << t->block << "," << t->trial_index << ","
+        << (t->practice ? 1 : 0) << "," << csv_field(t->stage);
+    for (const study::Factor& f : p.factors) out << "," << csv_field(condition.value(f.name, json()));
+    out << "," << csv_number(t->started_unix) << "," << csv_number(t->ended_unix - t->started_unix);
+    for (const std::string& k : measures) out << "," << csv_field(values.value(k, json()));
+    for (const std::string& k : ratings) out << "," << csv_field(values.value(k, json()));
+    const auto emg = micro(score, "emg_V"), sc = micro(score, "sc_S");
+    out << "," << (emg ? csv_number(*emg) : "") << "," << (sc ? csv_number(*sc) : "") << ","
+        << (t->capture_id ? std::to_string(*t->capture_id) : "") << "\n";
+  }
+}
+
+}  // namespace knoblab::studyrun

@@ -1,0 +1,133 @@
+#include "knoblab/studyrun/hapticd_apparatus.hpp"
+
+#include <array>
+#include <thread>
+
+namespace knoblab::studyrun {
+
+namespace {
+
+control::Client connect(const std::string& socket) {
+  try {
+    control::Client c(socket);
+    control::HelloOptions hello;
+    hello.client_name = "knoblab study";
+    c.hello(hello);
+    return c;
+  } catch (const std::exception& e) {
+    throw ApparatusError("hapticd at " + socket + ": " + e.what());
+  }
+}
+
+}  // namespace
+
+HapticdApparatus::HapticdApparatus(const std::string& socket, std::chrono::milliseconds silence_limit)
+    : client_(connect(socket)), silence_limit_(silence_limit) {
+  const nlohmann::json sub = call("subscribe", {{"events", {"trial", "fault_latched"}}, {"telemetry", true}});
+  try {
+    telemetry_ = std::make_unique<control::TelemetryReader>(sub.at("telemetry_shm").get<std::string>());
+  } catch (const std::exception& e) {
+    throw ApparatusError(std::string("hapticd's telemetry: ") + e.what());
+  }
+  last_record_ = last_poll_ = std::chrono::steady_clock::now();
+}
+
+nlohmann::json HapticdApparatus::call(std::string_view cmd, nlohmann::json args) {
+  try {
+    return client_.call(cmd, std::move(args));
+  } catch (const std::exception& e) {
+    throw ApparatusError("hapticd " + std::string(cmd) + ": " + e.what());
+  }
+}
+
+nlohmann::json HapticdApparatus::model_args(const study::Rendering& r) {
+  return {{"M_acc", r.M_acc}, {"B_vel", r.B_vel}, {"A_pos", r.detents_per_rev > 0 ? r.A_pos : 0.0},
+          {"P_pos", r.detents_per_rev > 0 ? 1.0 / r.detents_per_rev : 1.0}};
+}
+
+void HapticdApparatus::render(const study::Rendering& r) {
+  if (rendered_ && *rendered_ == r && render_mode_) return;
+  // A new model fades in over hapticd's ramp, so a slider drag changes the
+  // feel smoothly, without a step in torque.
+  call("load_model", model_args(r));
+  rendered_ = r;
+  if (!render_mode_) {
+    call("set_mode", {{"mode", "render"}});
+    render_mode_ = true;
+  }
+}
+
+void HapticdApparatus::start_trial(const TrialLabel& label) {
+  stopped_.reset();
+  call("start_trial", {{"study", label.study}, {"participant", label.participant}, {"condition", label.condition}});
+  // The trial's readings start now: what the ring holds from before (the
+  // rating, the commit) is history.
+  pending_.clear();
+  std::array<control::TelemetryRecord, 256> buf;
+  while (telemetry_->read(buf).count == buf.size()) {
+  }
+}
+
+void HapticdApparatus::take(const control::Event& e, bool fault_throws) {
+  if (e.name == "fault_latched") {
+    render_mode_ = false;  // a fault leaves hapticd idle; render is asked for again once cleared
+    if (fault_throws)
+      throw ApparatusError("hapticd latched a fault (" + e.data.value("faults", nlohmann::json::array()).dump() +
+                           "): the motor is safe; clear it and resume the session");
+  }
+  if (e.name == "trial" && e.data.value("state", "") == "stopped") {
+    TrialRecording rec;
+    if (e.data.contains("capture_id") && e.data["capture_id"].is_number_integer())
+      rec.capture_id = e.data["capture_id"].get<std::int64_t>();
+    rec.complete = e.data.value("complete", false);
+    rec.end_reason = e.data.value("end_reason", "");
+    stopped_ = rec;
+  }
+}
+
+std::optional<control::Event> HapticdApparatus::wait_event(std::chrono::milliseconds timeout) {
+  try {
+    return client_.wait_event(timeout);
+  } catch (const std::exception& ex) {
+    throw ApparatusError(std::string("hapticd lost: ") + ex.what());
+  }
+}
+
+TrialRecording HapticdApparatus::stop_trial() {
+  call("stop_trial");
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (!stopped_) {
+    // The writer thread stores the recording, then says so; a fault now ends
+    // the recording too, and the event still comes.
+    if (std::chrono::steady_clock::now() > deadline)
+      throw ApparatusError("hapticd did not report the trial's recording within 10 s");
+    if (auto e = wait_event(std::chrono::milliseconds(100))) take(*e, false);
+  }
+  TrialRecording rec = *stopped_;
+  stopped_.reset();
+  return rec;
+}
+
+KnobReading HapticdApparatus::next() {
+  while (pending_.empty()) {
+    std::array<control::TelemetryRecord, 64> buf;
+    const auto got = telemetry_->read(buf);
+    const auto now = std::chrono::steady_clock::now();
+    pending_.insert(pending_.end(), buf.begin(), buf.begin() + static_cast<std::ptrdiff_t>(got.count));
+    if (got.count > 0) last_record_ = now;
+    if (now - last_poll_ > std::chrono::milliseconds(50)) {
+      while (auto e = wait_event(std::chrono::milliseconds(0))) take(*e, true);
+      last_poll_ = now;
+    }
+    if (!pending_.empty()) break;
+    if (telemetry_->writer_closed()) throw ApparatusError("hapticd stopped (its telemetry ring closed)");
+    if (now - last_record_ > silence_limit_)
+      throw ApparatusError("hapticd's telemetry has been silent for " + std::to_string(silence_limit_.count()) + " ms");
+    std::this_thread::sleep_for(std::chrono::microseconds(500));
+  }
+  const control::TelemetryRecord rec = pending_.front();
+  pending_.pop_front();
+  return {rec.t, rec.theta, rec.omega, rec.torque};
+}
+
+}  // namespace knoblab::studyrun
