@@ -1,4 +1,5 @@
 #include "knoblab/studyrun/kind_tasks.hpp"
+#include "knoblab/studyrun/rendering_field.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -15,15 +16,6 @@ const study::Level& level_of(const study::Protocol& p, const study::Trial& t, st
   return study::trial_level(p, t, factor);
 }
 
-// A slider's parameter in a rendering (the protocol reader admits only these four).
-template <typename R>
-auto& field(R& r, const std::string& parameter) {
-  if (parameter == "M_acc") return r.M_acc;
-  if (parameter == "B_vel") return r.B_vel;
-  if (parameter == "A_pos") return r.A_pos;
-  if (parameter == "detents_per_rev") return r.detents_per_rev;
-  throw std::invalid_argument("no slider parameter " + parameter);
-}
 
 }  // namespace
 
@@ -122,7 +114,7 @@ MatchingTask::MatchingTask(const study::Protocol& protocol, const study::Trial& 
   const auto& settings = std::get<study::MatchingSettings>(protocol.settings);
   for (std::size_t i : settings.stage_sliders.at(trial.stage)) sliders_.push_back(settings.sliders[i]);
   // Every slider starts at its lowest value: the bare knob.
-  for (const study::Slider& s : sliders_) field(rendering_, s.parameter) = s.min;
+  for (const study::Slider& s : sliders_) rendering_field(rendering_, s.parameter) = s.min;
   display_.reference = level_of(protocol, trial, 0).name;
   display_.sliders = rendering_;
   display_.instruction = "Move the sliders until the knob feels like knob " + display_.reference;
@@ -139,7 +131,7 @@ Step MatchingTask::feed(const KnobReading& r, const Action& action) {
   if (action.sliders) {
     study::Rendering next = rendering_;
     for (const study::Slider& s : sliders_) {
-      field(next, s.parameter) = std::clamp(field(*action.sliders, s.parameter), s.min, s.max);
+      rendering_field(next, s.parameter) = std::clamp(rendering_field(*action.sliders, s.parameter), s.min, s.max);
     }
     // Without detents there is no detent amplitude to feel.
     if (next.detents_per_rev < 1) next.A_pos = 0;
@@ -170,7 +162,7 @@ std::optional<study::Rendering> MatchingTask::rendering_change() {
 
 nlohmann::json MatchingTask::result() const {
   nlohmann::json sliders = nlohmann::json::object();
-  for (const study::Slider& s : sliders_) sliders[s.parameter] = field(rendering_, s.parameter);
+  for (const study::Slider& s : sliders_) sliders[s.parameter] = rendering_field(rendering_, s.parameter);
   return {{"onset_s", onset_t_}, {"reference", display_.reference}, {"sliders", sliders},
           {"time_s", end_t_ - onset_t_}, {"slider_moves", moves_}, {"timed_out", timed_out_}};
 }

@@ -7,7 +7,9 @@ namespace knoblab::studyrun {
 
 namespace {
 
-double deg(double rad) { return rad * 180.0 / std::numbers::pi; }
+// Degrees at the edge, rounded to a nano-degree: 30° read as radians and
+// turned back is 29.999999999999996°, and tables group by these values.
+double deg(double rad) { return std::round(rad * 180.0 / std::numbers::pi * 1e9) / 1e9; }
 
 }  // namespace
 
@@ -67,7 +69,13 @@ Step PointingTask::feed(const KnobReading& r, const Action&) {
     }
     const double along = r.theta * a.target.direction;
     if (along > a.extreme) a.extreme = along;
-    if (r.omega * a.target.direction <= timing_.rest_speed_rad_s) a.ended = true;
+    // Stopped or turned back for a while, not a dip of a rendering's ringing.
+    if (r.omega * a.target.direction > timing_.rest_speed_rad_s) {
+      a.slow_since = -1;
+    } else {
+      if (a.slow_since < 0) a.slow_since = r.t;
+      if (r.t - a.slow_since >= timing_.stop_s) a.ended = true;
+    }
     all_ended = all_ended && a.ended;
   }
   if (phase_ == Phase::Moving) {

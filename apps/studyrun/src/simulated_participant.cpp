@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "knoblab/sim/presets.hpp"
+#include "knoblab/studyrun/rendering_field.hpp"
 #include "knoblab/studyrun/task.hpp"
 
 namespace knoblab::studyrun {
@@ -45,13 +46,6 @@ study::Rendering felt_reference(const study::Protocol& protocol, const study::Tr
   return r;
 }
 
-template <typename R>
-auto& field(R& r, const std::string& parameter) {
-  if (parameter == "M_acc") return r.M_acc;
-  if (parameter == "B_vel") return r.B_vel;
-  if (parameter == "A_pos") return r.A_pos;
-  return r.detents_per_rev;
-}
 
 }  // namespace
 
@@ -95,13 +89,13 @@ void SimulatedParticipant::begin_trial(const study::Protocol& protocol, const st
     std::size_t n = 0;
     for (std::size_t i : settings.stage_sliders.at(trial.stage)) {
       const study::Slider& s = settings.sliders[i];
-      field(sliders_, s.parameter) = s.min;
+      rendering_field(sliders_, s.parameter) = s.min;
       // Perceived as people perceive magnitudes: off by a ratio (about 25 %).
-      double goal = field(truth, s.parameter) * std::exp(gauss(0.25));
+      double goal = rendering_field(truth, s.parameter) * std::exp(gauss(0.25));
       if (s.parameter == "detents_per_rev") goal = std::round(goal);
       goal = std::clamp(goal, s.min, s.max);
-      field(slider_goal_, s.parameter) = goal;
-      match_error_ += std::abs(goal - std::clamp(field(truth, s.parameter), s.min, s.max)) / (s.max - s.min);
+      rendering_field(slider_goal_, s.parameter) = goal;
+      match_error_ += std::abs(goal - std::clamp(rendering_field(truth, s.parameter), s.min, s.max)) / (s.max - s.min);
       ++n;
     }
     if (n > 0) match_error_ /= static_cast<double>(n);
@@ -180,7 +174,7 @@ Action SimulatedParticipant::matching(const Display&, const KnobReading& r) {
   if (slider_steps_left_ > 0) {
     const double k = 1.0 / slider_steps_left_;
     for (const char* p : {"M_acc", "B_vel", "A_pos", "detents_per_rev"})
-      field(sliders_, p) += (field(slider_goal_, p) - field(sliders_, p)) * k;
+      rendering_field(sliders_, p) += (rendering_field(slider_goal_, p) - rendering_field(sliders_, p)) * k;
     --slider_steps_left_;
     a.sliders = sliders_;
     next_slider_t_ = r.t + std::uniform_real_distribution<double>(0.8, 1.6)(rng_) * model_.speed;

@@ -5,8 +5,10 @@
 //
 // Measures per acquisition (result()["acquisitions"]):
 //   movement_time_s  from the disk's appearance to the needle entering it
-//   endpoint_deg     where the movement ended — the first stop or reversal
-//                    after entering — from the disk's centre, along the
+//   endpoint_deg     where the movement ended — the furthest point before it
+//                    first stopped or turned back for 40 ms after entering
+//                    (a rendering's ringing does not end it) — from the
+//                    disk's centre, along the
 //                    movement's direction (+: past the centre)
 //   overshoot_deg    how far that end went past the disk's far edge (≥ 0)
 // Degrees at this edge, as the tidy export writes them.
@@ -21,6 +23,7 @@ namespace knoblab::studyrun {
 struct PointingTiming {
   double home_settle_s = 0.3;         // the needle rests on the home disk this long
   double rest_speed_rad_s = 0.05;     // slower than this counts as at rest
+  double stop_s = 0.04;               // a movement has ended once this slow (or turned back) this long
   double home_timeout_s = 60;         // the home disk not reached by then ends the trial
   double acquisition_timeout_s = 20;  // a target not reached by then ends the trial
   double last_end_timeout_s = 1.5;    // the last movement's end is looked for this long
@@ -40,6 +43,7 @@ class PointingTask final : public Task {
     double shown_t = 0;
     double entered_t = -1;  // < 0 until entered
     double extreme = 0;     // furthest along the direction after entering (rad)
+    double slow_since = -1; // when it last became slow (or turned back) after entering
     bool ended = false;
   };
   void show(std::size_t k, double t);

@@ -29,7 +29,7 @@ struct ParticipantModel {
   double fitts_a_s = 0.12;           // MT = a + b·log2(D/W + 1)
   double fitts_b_s_per_bit = 0.11;
   double aim_sd_per_width = 1.0 / 4.133;  // aim SD as a fraction of the target's width
-  double peak_speed_rad_s = 8.0;     // the fastest a wrist turns the knob (about 1.3 rev/s)
+  double peak_speed_rad_s = 12.0;    // the fastest a wrist turns the knob (about 2 rev/s)
   double grip_stiffness = 1.0;       // N·m/rad
   double grip_damping = 0.01;        // N·m·s/rad
   double speed = 1.0;                // this participant's pace (> 1: slower)
