@@ -192,12 +192,8 @@ int report(const Args& args, const std::string& study_id) {
                              " study: export it (knoblab study export) for R or pandas");
   const auto rows = studyrun::pointing_rows(db, study_id);
   study::PointingReportOptions options;
-  const auto& settings = std::get<study::PointingSettings>(protocol.settings);
-  for (std::size_t f = 0; f < protocol.factors.size(); ++f)
-    if (f != settings.amplitude_factor && f != settings.width_factor) {
-      for (const study::Level& l : protocol.factors[f].levels) options.rendering_order.push_back(l.name);
-      break;
-    }
+  for (const study::Level& l : protocol.factors[studyrun::rendering_factor(protocol)].levels)
+    options.rendering_order.push_back(l.name);
   const study::PointingReport r = study::pointing_report(rows, options);
   const auto files = study::write_pointing_plots(r, rows, dir, figure_options(args, "out"));
   if (auto json_path = args.get("json")) {

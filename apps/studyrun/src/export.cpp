@@ -38,13 +38,6 @@ std::optional<double> micro(const json& score, const char* key) {
   return score[key].get<double>() * 1e6;
 }
 
-// The pointing factor that is neither the amplitude nor the width.
-std::size_t rendering_factor(const study::Protocol& p) {
-  const auto& s = std::get<study::PointingSettings>(p.settings);
-  for (std::size_t f = 0; f < p.factors.size(); ++f)
-    if (f != s.amplitude_factor && f != s.width_factor) return f;
-  throw std::invalid_argument("the pointing protocol has no rendering factor besides amplitude and width");
-}
 
 std::string csv_number(double v) { return std::format("{}", v); }
 
@@ -61,6 +54,13 @@ std::string csv_field(const json& v) {
 }
 
 }  // namespace
+
+std::size_t rendering_factor(const study::Protocol& p) {
+  const auto& s = std::get<study::PointingSettings>(p.settings);
+  for (std::size_t f = 0; f < p.factors.size(); ++f)
+    if (f != s.amplitude_factor && f != s.width_factor) return f;
+  throw std::invalid_argument("the pointing protocol has no rendering factor besides amplitude and width");
+}
 
 study::Protocol stored_protocol(store::Store& store, std::string_view study) {
   return study::parse_protocol_text(load(store, study).front().session.protocol_json);
@@ -111,59 +111,55 @@ std::vector<study::PointingRow> pointing_rows(store::Store& store, std::string_v
 void write_trials_csv(std::ostream& out, store::Store& store, std::string_view study) {
   const auto sessions = load(store, study);
   const study::Protocol p = study::parse_protocol_text(sessions.front().session.protocol_json);
-  // Measures and ratings become columns in the order they first appear.
-  std::vector<std::string> measures, ratings;
-  std::vector<std::pair<const SessionTrials*, const store::StudyTrial*>> all;
-  auto note = [](std::vector<std::string>& names, const std::string& name) {
-    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  // Each trial's scalar measures and ratings, flattened once; their names
+  // become columns in the order they first appear.
+  struct Row {
+    const SessionTrials* session;
+    const store::StudyTrial* trial;
+    json measures = json::object(), ratings = json::object();
   };
-  auto flat = [](const json& object, const std::string& prefix, auto&& add) {
-    for (const auto& [k, v] : object.items())
-      if (v.is_primitive()) add(prefix + k, v);
+  std::vector<Row> rows;
+  std::vector<std::string> measure_names, rating_names;
+  auto put = [](json& values, std::vector<std::string>& names, const std::string& name, const json& v) {
+    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+    values[name] = v;
   };
   for (const SessionTrials& s : sessions)
     for (const store::StudyTrial& t : s.trials) {
-      all.push_back({&s, &t});
+      Row& row = rows.emplace_back(Row{&s, &t});
       const json m = json::parse(t.result_json);
-      flat(m, "", [&](const std::string& k, const json&) { note(measures, k); });
-      if (m.contains("sliders")) flat(m["sliders"], "slider_", [&](const std::string& k, const json&) { note(measures, k); });
+      for (const auto& [k, v] : m.items())
+        if (v.is_primitive()) put(row.measures, measure_names, k, v);
+      if (m.contains("sliders"))
+        for (const auto& [k, v] : m["sliders"].items())
+          if (v.is_primitive()) put(row.measures, measure_names, "slider_" + k, v);
       const json rated = json::parse(t.ratings_json);
       for (const auto& [k, v] : rated.items()) {
         if (v.is_object())
-          for (const auto& [axis, _] : v.items()) note(ratings, k + "_" + axis);
+          for (const auto& [axis, a] : v.items()) put(row.ratings, rating_names, k + "_" + axis, a);
         else
-          note(ratings, k);
+          put(row.ratings, rating_names, k, v);
       }
     }
   out << "participant,session,block,trial,practice,stage";
   for (const study::Factor& f : p.factors) out << "," << f.name;
   out << ",started_unix,duration_s";
-  for (const std::string& m : measures) out << "," << m;
-  for (const std::string& r : ratings) out << "," << r;
+  for (const std::string& m : measure_names) out << "," << m;
+  for (const std::string& r : rating_names) out << "," << r;
   out << ",emg_uV,sc_uS,capture_id\n";
-  for (const auto& [s, t] : all) {
-    const json condition = json::parse(t->condition_json);
-    json values = json::object();
-    const json m = json::parse(t->result_json);
-    flat(m, "", [&](const std::string& k, const json& v) { values[k] = v; });
-    if (m.contains("sliders")) flat(m["sliders"], "slider_", [&](const std::string& k, const json& v) { values[k] = v; });
-    const json rated = json::parse(t->ratings_json);
-    for (const auto& [k, v] : rated.items()) {
-      if (v.is_object())
-        for (const auto& [axis, a] : v.items()) values[k + "_" + axis] = a;
-      else
-        values[k] = v;
-    }
-    const json score = json::parse(t->biometrics_json).value("score", json::object());
-    out << csv_field(s->session.participant) << ",1," << t->block << "," << t->trial_index << ","
-        << (t->practice ? 1 : 0) << "," << csv_field(t->stage);
+  for (const Row& row : rows) {
+    const store::StudyTrial& t = *row.trial;
+    const json condition = json::parse(t.condition_json);
+    const json score = json::parse(t.biometrics_json).value("score", json::object());
+    out << csv_field(row.session->session.participant) << ",1," << t.block << "," << t.trial_index << ","
+        << (t.practice ? 1 : 0) << "," << csv_field(t.stage);
     for (const study::Factor& f : p.factors) out << "," << csv_field(condition.value(f.name, json()));
-    out << "," << csv_number(t->started_unix) << "," << csv_number(t->ended_unix - t->started_unix);
-    for (const std::string& k : measures) out << "," << csv_field(values.value(k, json()));
-    for (const std::string& k : ratings) out << "," << csv_field(values.value(k, json()));
+    out << "," << csv_number(t.started_unix) << "," << csv_number(t.ended_unix - t.started_unix);
+    for (const std::string& k : measure_names) out << "," << csv_field(row.measures.value(k, json()));
+    for (const std::string& k : rating_names) out << "," << csv_field(row.ratings.value(k, json()));
     const auto emg = micro(score, "emg_V"), sc = micro(score, "sc_S");
     out << "," << (emg ? csv_number(*emg) : "") << "," << (sc ? csv_number(*sc) : "") << ","
-        << (t->capture_id ? std::to_string(*t->capture_id) : "") << "\n";
+        << (t.capture_id ? std::to_string(*t.capture_id) : "") << "\n";
   }
 }
 

@@ -19,6 +19,10 @@ namespace knoblab::studyrun {
 // study or its sessions ran different protocols.
 study::Protocol stored_protocol(store::Store& store, std::string_view study);
 
+// A pointing protocol's rendering factor: the one that is neither its
+// amplitude nor its width factor (its levels are the report's renderings).
+std::size_t rendering_factor(const study::Protocol& protocol);
+
 // Every committed trial of a pointing study, practice included (marked), one
 // row per acquisition; acquisitions never made (a trial that timed out) are
 // left out. The rating is the protocol's first scale.
