@@ -7,6 +7,7 @@
 #include "knoblab/hapticd/core.hpp"
 #include "knoblab/hapticd/supervisor.hpp"
 #include "knoblab/sim/presets.hpp"
+#include "render_terms.hpp"
 
 namespace knoblab::studyrun {
 
@@ -51,10 +52,11 @@ sim::HandChannel& CoreApparatus::hand() { return impl_->hand; }
 void CoreApparatus::render(const study::Rendering& r) {
   hapticd::CoreCommand c;
   c.kind = hapticd::CoreCommand::SetRender;
-  c.render.M_acc = r.M_acc;
-  c.render.B_vel = r.B_vel;
-  c.render.A_pos = r.detents_per_rev > 0 ? r.A_pos : 0.0;
-  c.render.P_pos = r.detents_per_rev > 0 ? 1.0 / r.detents_per_rev : 1.0;
+  const detail::RenderTerms t = detail::render_terms(r);
+  c.render.M_acc = t.M_acc;
+  c.render.B_vel = t.B_vel;
+  c.render.A_pos = t.A_pos;
+  c.render.P_pos = t.P_pos;
   impl_->post(c);
   if (!impl_->render_mode) {
     hapticd::CoreCommand m;

@@ -3,6 +3,8 @@
 #include <array>
 #include <thread>
 
+#include "render_terms.hpp"
+
 namespace knoblab::studyrun {
 
 namespace {
@@ -41,8 +43,8 @@ nlohmann::json HapticdApparatus::call(std::string_view cmd, nlohmann::json args)
 }
 
 nlohmann::json HapticdApparatus::model_args(const study::Rendering& r) {
-  return {{"M_acc", r.M_acc}, {"B_vel", r.B_vel}, {"A_pos", r.detents_per_rev > 0 ? r.A_pos : 0.0},
-          {"P_pos", r.detents_per_rev > 0 ? 1.0 / r.detents_per_rev : 1.0}};
+  const detail::RenderTerms t = detail::render_terms(r);
+  return {{"M_acc", t.M_acc}, {"B_vel", t.B_vel}, {"A_pos", t.A_pos}, {"P_pos", t.P_pos}};
 }
 
 void HapticdApparatus::render(const study::Rendering& r) {
