@@ -6,9 +6,11 @@
 
 #include <atomic>
 #include <filesystem>
+#include <sstream>
 
 #include "knoblab/study/plan.hpp"
 #include "knoblab/studyrun/core_apparatus.hpp"
+#include "knoblab/studyrun/export.hpp"
 #include "knoblab/studyrun/session.hpp"
 #include "knoblab/studyrun/simulated_participant.hpp"
 #include "plant_apparatus.hpp"
@@ -211,6 +213,36 @@ TEST(Session, RunsThroughHapticdsOwnCoreInSimulatedTimeWithTheRenderingFeltOnThe
     EXPECT_FALSE(measures["timed_out"].get<bool>()) << t.result_json;
   }
   EXPECT_GT(felt[1] / n[1], 1.5 * felt[0] / n[0]);
+}
+
+}  // namespace
+}  // namespace knoblab::test
+
+namespace knoblab::test {
+namespace {
+
+TEST(Session, TheTrialsExportHasOneColumnPerFactorMeasureAndRatingAndARowPerTrial) {
+  SessionRun r;
+  json protocol = example_protocol("textures");
+  protocol["practice"] = json::object();
+  keep_levels(protocol, "texture", {"FUR", "GLS", "OIL"});
+  ASSERT_TRUE(r.run(protocol).finished);
+  std::ostringstream csv;
+  studyrun::write_trials_csv(csv, r.db, protocol["study"].get<std::string>());
+  std::istringstream in(csv.str());
+  std::string header, line;
+  std::getline(in, header);
+  // The texture is a factor and also what the task recorded: one column.
+  EXPECT_EQ(header,
+            "participant,session,block,trial,practice,stage,texture,started_unix,duration_s,onset_s,stroke_s,"
+            "affect_grid_arousal,affect_grid_valence,emg_uV,sc_uS,capture_id");
+  const auto columns = std::count(header.begin(), header.end(), ',');
+  int rows = 0;
+  while (std::getline(in, line)) {
+    ++rows;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), columns) << line;
+  }
+  EXPECT_EQ(rows, 3);
 }
 
 }  // namespace

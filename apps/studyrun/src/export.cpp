@@ -128,8 +128,8 @@ void write_trials_csv(std::ostream& out, store::Store& store, std::string_view s
     for (const store::StudyTrial& t : s.trials) {
       Row& row = rows.emplace_back(Row{&s, &t});
       const json m = json::parse(t.result_json);
-      for (const auto& [k, v] : m.items())
-        if (v.is_primitive()) put(row.measures, measure_names, k, v);
+      for (const auto& [k, v] : m.items())  // a measure that repeats a factor (the texture) has its column
+        if (v.is_primitive() && !p.factor_index(k)) put(row.measures, measure_names, k, v);
       if (m.contains("sliders"))
         for (const auto& [k, v] : m["sliders"].items())
           if (v.is_primitive()) put(row.measures, measure_names, "slider_" + k, v);

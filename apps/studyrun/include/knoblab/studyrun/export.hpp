@@ -30,7 +30,8 @@ std::vector<study::PointingRow> pointing_rows(store::Store& store, std::string_v
 
 // Any study, one row per trial: participant, session, block, trial,
 // practice, stage, a column per factor (its level), started_unix,
-// duration_s, a column per scalar measure the task recorded (the matching
+// duration_s, a column per scalar measure the task recorded that is not
+// already a factor's column (the matching
 // sliders as slider_<parameter>, SI), a column per rating (the affect grid
 // as affect_grid_valence, affect_grid_arousal), emg_uV, sc_uS, capture_id.
 // Missing values are empty (NA in R and pandas).
