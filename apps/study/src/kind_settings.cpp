@@ -37,6 +37,17 @@ Slider parse_slider(const nlohmann::json& v, const std::string& path) {
   s.min = in_range(r.require("min"), r.path_of("min"), 0, parameter.limit, parameter.unit);
   s.max = in_range(r.require("max"), r.path_of("max"), 0, parameter.limit, parameter.unit);
   if (s.max <= s.min) fail(r.path_of("max"), std::format("must be above min ({})", s.min));
+  // β of Stevens' power law (slider_mapping.hpp). Stevens' own exponents run
+  // from about 0.3 to 3.5; beyond 10 either way a slider would put nearly all
+  // of its values at one end.
+  if (const nlohmann::json* beta = r.find("perceptual_exponent")) {
+    const std::string beta_path = r.path_of("perceptual_exponent");
+    s.perceptual_exponent = as_number(*beta, beta_path);
+    if (!(s.perceptual_exponent > 0))
+      fail(beta_path, std::format("must be above 0 (1 is a linear slider), got {}", s.perceptual_exponent));
+    if (s.perceptual_exponent < 0.1 || s.perceptual_exponent > 10)
+      fail(beta_path, std::format("must be from 0.1 to 10 (1 is a linear slider), got {}", s.perceptual_exponent));
+  }
   r.finish();
   return s;
 }

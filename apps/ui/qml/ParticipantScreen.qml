@@ -130,20 +130,25 @@ Rectangle {
                     font.pixelSize: Theme.fontBody
                     Layout.preferredWidth: Math.round(170 * Theme.scale)
                 }
+                // It moves in position (0 … 1); the session maps a position
+                // to the value it sets by the protocol's power law, so equal
+                // movements are equal steps of what the participant feels.
                 Slider {
                     id: slider
                     objectName: "slider." + sliderRow.modelData.parameter
                     Layout.fillWidth: true
                     Layout.preferredHeight: Theme.touch
-                    from: sliderRow.modelData.min
-                    to: sliderRow.modelData.max
-                    value: sliderRow.value
+                    from: 0
+                    to: 1
+                    value: view.study.sliderPosition(sliderRow.modelData.parameter, sliderRow.value)
                     live: true
-                    onMoved: view.study.setSlider(sliderRow.modelData.parameter, slider.value)
+                    onMoved: view.study.setSlider(sliderRow.modelData.parameter,
+                                                  view.study.sliderValue(sliderRow.modelData.parameter, slider.value))
                 }
                 Text {
                     objectName: "sliderValue." + sliderRow.modelData.parameter
-                    text: Study.sliderText(slider.value, sliderRow.modelData.unit)
+                    text: Study.sliderText(view.study.sliderValue(sliderRow.modelData.parameter, slider.value),
+                                           sliderRow.modelData.unit)
                     color: Theme.muted
                     font.pixelSize: Theme.fontBody
                     horizontalAlignment: Text.AlignRight

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <condition_variable>
+#include <limits>
 #include <mutex>
 #include <numbers>
 #include <optional>
@@ -20,6 +21,7 @@
 #include "knoblab/study/participant.hpp"
 #include "knoblab/study/plan.hpp"
 #include "knoblab/study/protocol.hpp"
+#include "knoblab/study/slider_mapping.hpp"
 #include "knoblab/studyrun/core_apparatus.hpp"
 #include "knoblab/studyrun/hapticd_apparatus.hpp"
 #include "knoblab/studyrun/session.hpp"
@@ -371,6 +373,28 @@ void StudySession::setSlider(const QString& parameter, double value) {
   person_->set_slider(t->parameter, value / t->factor);
 }
 
+double StudySession::sliderValue(const QString& parameter, double position) const {
+  const Term* t = term(parameter.toStdString());
+  const auto s = std::ranges::find_if(trial_sliders_, [&](const study::Slider& x) { return t && x.parameter == t->parameter; });
+  if (s == trial_sliders_.end()) return std::numeric_limits<double>::quiet_NaN();
+  try {
+    return study::slider_value(*s, position) * t->factor;
+  } catch (const std::invalid_argument&) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+}
+
+double StudySession::sliderPosition(const QString& parameter, double value) const {
+  const Term* t = term(parameter.toStdString());
+  const auto s = std::ranges::find_if(trial_sliders_, [&](const study::Slider& x) { return t && x.parameter == t->parameter; });
+  if (s == trial_sliders_.end()) return std::numeric_limits<double>::quiet_NaN();
+  try {
+    return study::slider_position(*s, value / t->factor);
+  } catch (const std::invalid_argument&) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+}
+
 void StudySession::done() {
   if (person_) person_->set_done();
 }
@@ -483,15 +507,18 @@ void StudySession::run(QString db_path, QByteArray protocol_text, QString code_q
                                 {QStringLiteral("label"), QString::fromLatin1(term_->label)},
                                 {QStringLiteral("unit"), QString::fromUtf8(term_->unit)},
                                 {QStringLiteral("min"), s.min * term_->factor},
-                                {QStringLiteral("max"), s.max * term_->factor}};
+                                {QStringLiteral("max"), s.max * term_->factor},
+                                {QStringLiteral("exponent"), s.perceptual_exponent}};
       post([this, index = static_cast<int>(t.index), block = static_cast<int>(t.block),
             stage = QString::fromStdString(protocol.stages.at(t.stage).name), practice = t.practice,
-            condition = QString::fromStdString(study::condition_label(protocol, t)), ranges] {
+            condition = QString::fromStdString(study::condition_label(protocol, t)), ranges,
+            sliders = offered_sliders(protocol, t)] {
         trial_ = index;
         block_ = block;
         stage_ = stage;
         practice_ = practice;
         condition_ = condition;
+        trial_sliders_ = sliders;
         slider_ranges_ = ranges;
         emit trialChanged();
       });

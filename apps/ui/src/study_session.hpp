@@ -26,6 +26,11 @@
 #include <cstdint>
 #include <memory>
 #include <thread>
+#include <vector>
+
+namespace knoblab::study {
+struct Slider;
+}
 
 namespace knoblab::ui {
 
@@ -52,8 +57,9 @@ class StudySession : public QObject {
   Q_PROPERTY(QString stage READ stage NOTIFY trialChanged)
   Q_PROPERTY(bool practice READ practice NOTIFY trialChanged)
   Q_PROPERTY(QString condition READ condition NOTIFY trialChanged)
-  // The matching sliders of this trial: [{parameter, label, unit, min, max}]
-  // in presentation units (mN·m/(rad/s²), mN·m/(rad/s), mN·m, detents/rev).
+  // The matching sliders of this trial: [{parameter, label, unit, min, max,
+  // exponent}] in presentation units (mN·m/(rad/s²), mN·m/(rad/s), mN·m,
+  // detents/rev); exponent is the slider's perceptual_exponent β.
   Q_PROPERTY(QVariantList sliderRanges READ sliderRanges NOTIFY trialChanged)
   // The participant's screen (studyrun::Display), angles in degrees.
   Q_PROPERTY(QString instruction READ instruction NOTIFY displayChanged)
@@ -130,6 +136,13 @@ class StudySession : public QObject {
   Q_INVOKABLE void submitRatings(const QVariantMap& ratings);
   // A matching slider, in presentation units.
   Q_INVOKABLE void setSlider(const QString& parameter, double value);
+  // A matching slider of this trial: its value (presentation units) at a
+  // position from 0 (bottom) to 1 (top), and back, by the protocol's power
+  // law (study::slider_value, slider_position), so the participant view
+  // moves its sliders in position and never maps values itself. NaN when
+  // the trial has no such slider or the number is not finite.
+  Q_INVOKABLE double sliderValue(const QString& parameter, double position) const;
+  Q_INVOKABLE double sliderPosition(const QString& parameter, double value) const;
   Q_INVOKABLE void done();
   // A think-aloud note and free-text tags about the running trial.
   Q_INVOKABLE void addNote(const QString& text, const QStringList& tags);
@@ -166,6 +179,7 @@ class StudySession : public QObject {
   QString stage_, condition_;
   bool practice_ = false;
   QVariantList slider_ranges_;
+  std::vector<study::Slider> trial_sliders_;  // SI, as the protocol gives them
   QString instruction_;
   bool has_disk_ = false, needle_ = false, has_counter_ = false, has_target_ = false;
   double disk_centre_deg_ = 0, disk_width_deg_ = 0, needle_deg_ = 0;

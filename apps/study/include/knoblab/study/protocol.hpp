@@ -129,6 +129,10 @@ struct Slider {
   std::string parameter;  // a Rendering field: M_acc, B_vel, A_pos, detents_per_rev
   double min = 0;         // SI, as that field
   double max = 0;
+  // β of Stevens' power law ψ ∝ φ^β for what the slider sets: equal steps of
+  // the slider are equal steps of ψ (slider_mapping.hpp). 1: linear, as the
+  // thesis' sliders were, which an expert felt were not linear (§3.4.3.3).
+  double perceptual_exponent = 1;
 };
 struct MatchingSettings {
   enum class Group { Novice, Expert };
