@@ -20,9 +20,12 @@
 #include "knoblab/study/shuffle.hpp"
 #include "knoblab/study/pointing_plots.hpp"
 #include "knoblab/study/pointing_report.hpp"
+#include "knoblab/study/trial_plots.hpp"
+#include "knoblab/study/trial_report.hpp"
 #include "knoblab/studyrun/core_apparatus.hpp"
 #include "knoblab/studyrun/export.hpp"
 #include "knoblab/studyrun/hapticd_apparatus.hpp"
+#include "knoblab/studyrun/reference_knob.hpp"
 #include "knoblab/studyrun/session.hpp"
 #include "knoblab/studyrun/simulated_participant.hpp"
 #include "store_open.hpp"
@@ -47,9 +50,13 @@ const CommandSpec kStudySpec{
     "sessions: each participant's session of STUDY: trials committed of the plan.\n"
     "export: the committed trials as a tidy CSV (docs/studies.md): the pointing study\n"
     "one row per target acquisition, other kinds one row per trial.\n"
-    "report: the pointing study's analysis (thesis §4.6.2): Fitts' law per rendering\n"
-    "with effective widths, the repeated-measures ANOVA of movement time, the rating\n"
-    "tests and correlations, printed, as JSON with --json, and as figures in DIR.",
+    "report: the analysis, printed, as JSON with --json, and as figures in DIR. The\n"
+    "pointing study's (thesis §4.6.2): Fitts' law per rendering with effective widths,\n"
+    "the repeated-measures ANOVA of movement time, the rating tests and correlations.\n"
+    "Other kinds' over the levels of one factor (--factor; default the one with the\n"
+    "most levels): ratings and measures per level, Friedman and Wilcoxon on each\n"
+    "rating, its correlations with EMG and SC; matching, the settings against the\n"
+    "reference knobs (thesis Tables 12–14).",
     with_figure_options({{"db", true, "the sqlite store (hapticd's)"},
      {"participants", true, "how many simulated participants (default 1)"},
      {"first", true, "the first participant's number (default 1: SIM01)"},
@@ -58,13 +65,15 @@ const CommandSpec kStudySpec{
      {"hand", true, "the sim backend's hand channel (default /knoblab-sim-hand)"},
      {"in-process", false, "simulate: hapticd's core in simulated time, no daemon (no captures, no biometrics)"},
      {"out", true, "export: the CSV file; report: the directory for the figures"},
-     {"json", true, "report: write the analysis as JSON; '-' for stdout"}},
+     {"json", true, "report: write the analysis as JSON; '-' for stdout"},
+     {"factor", true, "report, not pointing: the factor whose levels are compared"}},
                         "out"),
     2, 2, false,
     {"knoblab study simulate examples/studies/pointing.json --participants 2 --db /var/lib/knoblab/knoblab.sqlite",
      "knoblab study sessions rotary-pointing --db /var/lib/knoblab/knoblab.sqlite",
      "knoblab study export rotary-pointing --db /var/lib/knoblab/knoblab.sqlite --out trials.csv",
-     "knoblab study report rotary-pointing --db /var/lib/knoblab/knoblab.sqlite --out report/ --json report.json"}};
+     "knoblab study report rotary-pointing --db /var/lib/knoblab/knoblab.sqlite --out report/ --json report.json",
+     "knoblab study report list-selection --factor knob --db /var/lib/knoblab/knoblab.sqlite --out report/"}};
 
 namespace {
 
@@ -182,32 +191,70 @@ int export_trials(const Args& args, const std::string& study_id) {
   return 0;
 }
 
-int report(const Args& args, const std::string& study_id) {
-  store::Store db = open_store_to_read(args.require("db"));
-  const std::string dir = args.require("out");
-  const study::Protocol protocol = studyrun::stored_protocol(db, study_id);
-  if (protocol.kind != study::Kind::Pointing)
-    throw std::runtime_error("study report analyses pointing studies; '" + study_id + "' is a " +
-                             std::string(study::kind_name(protocol.kind)) +
-                             " study: export it (knoblab study export) for R or pandas");
+// The report's JSON to a file or stdout, its text to stdout unless the JSON
+// went there.
+void print_report(const Args& args, const nlohmann::json& json, const std::string& text,
+                  const std::vector<std::filesystem::path>& files) {
+  if (auto json_path = args.get("json")) {
+    const std::string dumped = json.dump(2) + "\n";
+    if (*json_path == "-")
+      std::cout << dumped;
+    else
+      write_atomically(*json_path, dumped);
+  }
+  if (args.get("json").value_or("") != "-") {
+    std::cout << text;
+    for (const auto& f : files) std::cout << "wrote " << f.string() << "\n";
+  }
+}
+
+int pointing_report(const Args& args, const study::Protocol& protocol, store::Store& db, const std::string& study_id) {
+  if (args.get("factor"))
+    throw UsageError("study report: --factor is for the per-trial studies; the pointing report compares renderings");
   const auto rows = studyrun::pointing_rows(db, study_id);
   study::PointingReportOptions options;
   for (const study::Level& l : protocol.factors[studyrun::rendering_factor(protocol)].levels)
     options.rendering_order.push_back(l.name);
   const study::PointingReport r = study::pointing_report(rows, options);
-  const auto files = study::write_pointing_plots(r, rows, dir, figure_options(args, "out"));
-  if (auto json_path = args.get("json")) {
-    const std::string text = study::to_json(r).dump(2) + "\n";
-    if (*json_path == "-")
-      std::cout << text;
-    else
-      write_atomically(*json_path, text);
-  }
-  if (args.get("json").value_or("") != "-") {
-    std::cout << study::format_pointing_report(r);
-    for (const auto& f : files) std::cout << "wrote " << f.string() << "\n";
-  }
+  const auto files = study::write_pointing_plots(r, rows, args.require("out"), figure_options(args, "out"));
+  print_report(args, study::to_json(r), study::format_pointing_report(r), files);
   return 0;
+}
+
+// The factor compared: the one named, else the one with the most levels
+// (the knob, the stimulus, the texture; the first of equals).
+const study::Factor& compared_factor(const Args& args, const study::Protocol& protocol) {
+  if (auto name = args.get("factor")) {
+    if (const auto f = protocol.factor_index(*name)) return protocol.factors[*f];
+    std::string names;
+    for (const study::Factor& f : protocol.factors) names += (names.empty() ? "" : ", ") + f.name;
+    throw UsageError("study report: the protocol has no factor '" + *name + "' (it has " + names + ")");
+  }
+  const study::Factor* best = &protocol.factors.front();
+  for (const study::Factor& f : protocol.factors)
+    if (f.levels.size() > best->levels.size()) best = &f;
+  return *best;
+}
+
+int trial_report(const Args& args, const study::Protocol& protocol, store::Store& db, const std::string& study_id) {
+  const study::Factor& factor = compared_factor(args, protocol);
+  study::TrialReportOptions options;
+  options.factor = factor.name;
+  for (const study::Level& l : factor.levels) options.levels.push_back(l.name);
+  if (&factor == &protocol.factors.front()) options.references = studyrun::matching_references(protocol);
+  const auto rows = studyrun::trial_rows(db, study_id);
+  const study::TrialReport r = study::trial_report(rows, options);
+  const auto files = study::write_trial_plots(r, args.require("out"), figure_options(args, "out"));
+  print_report(args, study::to_json(r), study::format_trial_report(r), files);
+  return 0;
+}
+
+int report(const Args& args, const std::string& study_id) {
+  store::Store db = open_store_to_read(args.require("db"));
+  args.require("out");
+  const study::Protocol protocol = studyrun::stored_protocol(db, study_id);
+  if (protocol.kind == study::Kind::Pointing) return pointing_report(args, protocol, db, study_id);
+  return trial_report(args, protocol, db, study_id);
 }
 
 }  // namespace

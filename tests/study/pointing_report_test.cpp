@@ -60,7 +60,7 @@ TEST(PointingReport, EveryFigureMatchesAnIndependentComputationInR) {
   ASSERT_TRUE(report.friedman_rating);
   EXPECT_LT(report.friedman_rating->p, 1e-3);
   ASSERT_EQ(report.wilcoxon_rating.size(), 6u);
-  for (const auto& w : report.wilcoxon_rating) ASSERT_TRUE(w.test) << w.rendering;
+  for (const auto& w : report.wilcoxon_rating) ASSERT_TRUE(w.test) << w.level;
   // Ties in the medians of 12 participants: the exact distribution of the tied ranks.
   EXPECT_EQ(report.wilcoxon_rating[1].test->method, stats::WilcoxonMethod::exact);
   ASSERT_TRUE(report.correlations.movement_time_rating && report.correlations.rating_emg &&

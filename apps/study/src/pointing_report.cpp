@@ -21,47 +21,6 @@ namespace knoblab::study {
 
 namespace detail {
 
-double mean(std::span<const double> v) {
-  double s = 0;
-  for (const double x : v) s += x;
-  return s / static_cast<double>(v.size());
-}
-
-namespace {
-
-// t₀.₉₇₅ on df degrees of freedom: the upper tail is bisected (it falls
-// monotonically), to the last bit.
-double t_quantile_975(double df) {
-  double lo = 0, hi = 1;
-  while (stats::t_sf(hi, df) > 0.025) hi *= 2;
-  for (int k = 0; k < 200 && hi - lo > 1e-15 * hi; ++k) {
-    const double mid = (lo + hi) / 2;
-    (stats::t_sf(mid, df) > 0.025 ? lo : hi) = mid;
-  }
-  return (lo + hi) / 2;
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
-}
-
-}  // namespace
-
-ParticipantMean mean_interval(std::span<const double> v) {
-  ParticipantMean m;
-  m.participants = v.size();
-  m.mean = mean(v);
-  double ss = 0;
-  for (const double x : v) ss += (x - m.mean) * (x - m.mean);
-  const double n = static_cast<double>(v.size());
-  const double half = t_quantile_975(n - 1) * std::sqrt(ss / (n - 1)) / std::sqrt(n);
-  m.low = m.mean - half;
-  m.high = m.mean + half;
-  return m;
-}
-
 PointingTables tabulate(std::span<const PointingRow> rows, const PointingReportOptions& options) {
   PointingTables t;
   std::vector<const PointingRow*> analysed;
@@ -144,8 +103,6 @@ PointingTables tabulate(std::span<const PointingRow> rows, const PointingReportO
 }  // namespace detail
 
 namespace {
-
-using detail::mean;
 
 std::string deg(double v) { return std::format("{}°", v); }
 
@@ -257,7 +214,7 @@ PointingReport pointing_report(std::span<const PointingRow> rows, const Pointing
     std::vector<double> m, md;
     for (std::size_t j = 0; j < k; ++j) {
       m.push_back(mean(t.times[i][j]));
-      md.push_back(detail::median(t.ratings[i][j]));
+      md.push_back(median(t.ratings[i][j]));
     }
     mt.push_back(std::move(m));
     medians.push_back(std::move(md));
@@ -269,38 +226,13 @@ PointingReport pointing_report(std::span<const PointingRow> rows, const Pointing
       times.push_back(mt[c][j]);
       ratings.push_back(mean(t.ratings[t.complete[c]][j]));
     }
-    report.renderings[j].movement_time_by_participant = detail::mean_interval(times);
-    report.renderings[j].rating_by_participant = detail::mean_interval(ratings);
+    report.renderings[j].movement_time_by_participant = mean_interval(times);
+    report.renderings[j].rating_by_participant = mean_interval(ratings);
   }
 
-  if (k < 3) {
-    report.notes.push_back("no Friedman test: it needs at least 3 renderings (the Wilcoxon test compares 2)");
-  } else {
-    try {
-      report.friedman_rating = stats::friedman(medians);
-    } catch (const std::invalid_argument&) {
-      report.notes.push_back("no Friedman test: every participant's median rating is the same in every rendering");
-    }
-  }
-  const double comparisons = static_cast<double>(k - 1);
-  for (std::size_t j = 1; j < k; ++j) {
-    RatingComparison c;
-    c.rendering = t.renderings[j];
-    c.control = t.renderings[0];
-    std::vector<double> x, y;
-    for (const auto& row : medians) {
-      x.push_back(row[j]);
-      y.push_back(row[0]);
-    }
-    try {
-      c.test = stats::wilcoxon(x, y);
-      c.p_bonferroni = std::min(1.0, c.test->p * comparisons);
-    } catch (const std::invalid_argument&) {
-      report.notes.push_back("no Wilcoxon test of \"" + c.rendering + "\" against \"" + c.control +
-                             "\": every participant's median rating is the same in both");
-    }
-    report.wilcoxon_rating.push_back(std::move(c));
-  }
+  RatingTests tests = rating_tests(medians, t.renderings, "rendering", report.notes);
+  report.friedman_rating = tests.friedman;
+  report.wilcoxon_rating = std::move(tests.wilcoxon);
 
   std::vector<double> trial_mt, trial_rating, emg_rating, emg, sc_rating, sc;
   for (const detail::PointingTrial& tr : t.trials) {
@@ -309,31 +241,14 @@ PointingReport pointing_report(std::span<const PointingRow> rows, const Pointing
     if (tr.emg_uV) emg_rating.push_back(tr.rating), emg.push_back(*tr.emg_uV);
     if (tr.sc_uS) sc_rating.push_back(tr.rating), sc.push_back(*tr.sc_uS);
   }
-  const auto correlate = [&](const std::vector<double>& a, const std::vector<double>& b,
-                             const std::string& what) -> std::optional<stats::CorrelationResult> {
-    try {
-      return stats::spearman(a, b);
-    } catch (const std::invalid_argument& e) {
-      report.notes.push_back("no Spearman correlation of " + what + " over " + std::to_string(a.size()) +
-                             " trials: " + e.what());
-      return std::nullopt;
-    }
+  const auto correlate = [&](const std::vector<double>& a, const std::vector<double>& b, const std::string& what) {
+    return spearman_or_note(a, b, what, report.notes);
   };
   report.correlations.movement_time_rating = correlate(trial_mt, trial_rating, "movement time with rating");
   if (!emg.empty()) report.correlations.rating_emg = correlate(emg_rating, emg, "rating with EMG");
   if (!sc.empty()) report.correlations.rating_sc = correlate(sc_rating, sc, "rating with SC");
   return report;
 }
-
-namespace {
-
-nlohmann::json participant_mean(const ParticipantMean& m) {
-  return {{"mean", m.mean}, {"low", m.low}, {"high", m.high}, {"participants", m.participants}};
-}
-
-nlohmann::json correlation(const stats::CorrelationResult& c) { return {{"rho", c.r}, {"p", c.p}, {"n", c.n}}; }
-
-}  // namespace
 
 nlohmann::json to_json(const PointingReport& r) {
   nlohmann::json out;
@@ -359,8 +274,8 @@ nlohmann::json to_json(const PointingReport& r) {
                         {"rating_mean", g.rating_mean},
                         {"trials", g.trials},
                         {"acquisitions", g.acquisitions},
-                        {"movement_time_by_participant", participant_mean(g.movement_time_by_participant)},
-                        {"rating_by_participant", participant_mean(g.rating_by_participant)},
+                        {"movement_time_by_participant", to_json(g.movement_time_by_participant)},
+                        {"rating_by_participant", to_json(g.rating_by_participant)},
                         {"cells", std::move(cells)}};
     if (g.fitts_line)
       j["fitts_line"] = {{"intercept_s", g.fitts_line->intercept},
@@ -386,50 +301,22 @@ nlohmann::json to_json(const PointingReport& r) {
                               {"participants", r.participants.size()}};
   out["wilcoxon_rating"] = nlohmann::json::array();
   for (const RatingComparison& c : r.wilcoxon_rating) {
-    nlohmann::json j = {{"rendering", c.rendering}, {"control", c.control}};
-    if (c.test) {
-      j["W"] = c.test->statistic;
-      j["r_plus"] = c.test->r_plus;
-      j["z"] = c.test->z;
-      j["p"] = c.test->p;
-      j["p_bonferroni"] = c.p_bonferroni;
-      j["n"] = c.test->n;
-      j["zeros"] = c.test->zeros;
-      j["method"] = c.test->method == stats::WilcoxonMethod::normal ? "normal" : "exact";
-    } else {
-      j["zeros"] = r.participants.size();
-    }
+    nlohmann::json j = to_json(c, r.participants.size());
+    j["rendering"] = c.level;
+    j["control"] = c.control;
     out["wilcoxon_rating"].push_back(std::move(j));
   }
   out["correlations"] = nlohmann::json::object();
   if (r.correlations.movement_time_rating)
-    out["correlations"]["movement_time_rating"] = correlation(*r.correlations.movement_time_rating);
-  if (r.correlations.rating_emg) out["correlations"]["rating_emg"] = correlation(*r.correlations.rating_emg);
-  if (r.correlations.rating_sc) out["correlations"]["rating_sc"] = correlation(*r.correlations.rating_sc);
+    out["correlations"]["movement_time_rating"] = to_json(*r.correlations.movement_time_rating);
+  if (r.correlations.rating_emg) out["correlations"]["rating_emg"] = to_json(*r.correlations.rating_emg);
+  if (r.correlations.rating_sc) out["correlations"]["rating_sc"] = to_json(*r.correlations.rating_sc);
   out["participants"] = r.participants;
   out["trials"] = r.trials;
   out["acquisitions"] = r.acquisitions;
   out["notes"] = r.notes;
   return out;
 }
-
-namespace {
-
-// p with its digits, small ones in exponent form (1.23e-07), rather than
-// "< .001": a reader may want the value.
-std::string p_text(double p) {
-  if (p >= 0.001) return std::format("{:.4f}", p);
-  return std::format("{:.2e}", p);
-}
-
-std::string left(const std::string& s, std::size_t width) {
-  // Width in characters as shown: UTF-8 continuation bytes take no column.
-  std::size_t shown = 0;
-  for (const char ch : s) shown += (static_cast<unsigned char>(ch) & 0xC0) != 0x80 ? 1 : 0;
-  return shown >= width ? s : s + std::string(width - shown, ' ');
-}
-
-}  // namespace
 
 std::string format_pointing_report(const PointingReport& r) {
   std::string s;
@@ -469,30 +356,14 @@ std::string format_pointing_report(const PointingReport& r) {
   s += std::format("  {:<16} {:>11}   {}\n", "rendering", "mean MT (s)", "95 % CI over participants");
   for (const PointingRendering& g : r.renderings) {
     const ParticipantMean& m = g.movement_time_by_participant;
-    s += std::format("  {} {:>11.4f}   [{:.4f}, {:.4f}]\n", left(g.rendering, 16), m.mean, m.low, m.high);
+    s += std::format("  {} {:>11.4f}   [{:.4f}, {:.4f}]\n", pad(g.rendering, 16), m.mean, m.low, m.high);
   }
 
   s += "\nRatings (each participant's median per rendering)\n";
-  if (r.friedman_rating)
-    s += std::format("  Friedman χ²({}, N = {}) = {:.3f}, p = {}\n", r.friedman_rating->df, r.participants.size(),
-                     r.friedman_rating->statistic, p_text(r.friedman_rating->p));
-  if (!r.wilcoxon_rating.empty()) {
-    s += std::format("  Wilcoxon signed-rank against {}, Bonferroni over {}:\n", r.wilcoxon_rating.front().control,
-                     r.wilcoxon_rating.size());
-    for (const RatingComparison& c : r.wilcoxon_rating) {
-      if (!c.test) {
-        s += std::format("    {} (no differences)\n", left(c.rendering, 16));
-        continue;
-      }
-      s += std::format("    {} W = {:>6} z = {:>7.3f}  p = {:>9}  p (Bonferroni) = {:>9}  n = {}{}, {}\n",
-                       left(c.rendering, 16), std::format("{}", c.test->statistic), c.test->z, p_text(c.test->p),
-                       p_text(c.p_bonferroni), c.test->n, c.test->zeros ? std::format(" ({} zero)", c.test->zeros) : "",
-                       c.test->method == stats::WilcoxonMethod::exact ? "exact" : "normal approximation");
-    }
-  }
+  s += format_rating_tests({r.friedman_rating, r.wilcoxon_rating}, r.participants.size());
   s += "\nSpearman correlations over trials\n";
   const auto corr = [&](const char* what, const std::optional<stats::CorrelationResult>& c) {
-    if (c) s += std::format("  {} ρ({}) = {:.4f}, p = {}\n", left(what, 28), c->n, c->r, p_text(c->p));
+    if (c) s += std::format("  {} ρ({}) = {:.4f}, p = {}\n", pad(what, 28), c->n, c->r, p_text(c->p));
   };
   corr("movement time with rating", r.correlations.movement_time_rating);
   corr("rating with EMG", r.correlations.rating_emg);

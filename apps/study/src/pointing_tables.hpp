@@ -37,9 +37,4 @@ struct PointingTables {
 // rows of a trial that disagree, no analysed rows.
 PointingTables tabulate(std::span<const PointingRow> rows, const PointingReportOptions& options);
 
-double mean(std::span<const double> v);
-
-// Mean and 95 % t interval of v (n ≥ 2).
-ParticipantMean mean_interval(std::span<const double> v);
-
 }  // namespace knoblab::study::detail

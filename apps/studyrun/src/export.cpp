@@ -108,46 +108,91 @@ std::vector<study::PointingRow> pointing_rows(store::Store& store, std::string_v
   return rows;
 }
 
-void write_trials_csv(std::ostream& out, store::Store& store, std::string_view study) {
-  const auto sessions = load(store, study);
-  const study::Protocol p = study::parse_protocol_text(sessions.front().session.protocol_json);
-  // Each trial's scalar measures and ratings, flattened once; their names
-  // become columns in the order they first appear.
-  struct Row {
-    const SessionTrials* session;
-    const store::StudyTrial* trial;
-    json measures = json::object(), ratings = json::object();
-  };
-  std::vector<Row> rows;
+namespace {
+
+// A trial's scalar measures and ratings flattened into named values, the
+// names in the order they first appear: the CSV's columns and the report's
+// keys. A measure that repeats a factor (the texture) has its column already.
+struct Flat {
+  const SessionTrials* session;
+  const store::StudyTrial* trial;
+  json measures = json::object(), ratings = json::object();
+};
+
+struct FlatTable {
+  std::vector<Flat> rows;
   std::vector<std::string> measure_names, rating_names;
+};
+
+FlatTable flatten(const std::vector<SessionTrials>& sessions, const study::Protocol& p) {
+  FlatTable t;
   auto put = [](json& values, std::vector<std::string>& names, const std::string& name, const json& v) {
     if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
     values[name] = v;
   };
   for (const SessionTrials& s : sessions)
-    for (const store::StudyTrial& t : s.trials) {
-      Row& row = rows.emplace_back(Row{&s, &t});
-      const json m = json::parse(t.result_json);
-      for (const auto& [k, v] : m.items())  // a measure that repeats a factor (the texture) has its column
-        if (v.is_primitive() && !p.factor_index(k)) put(row.measures, measure_names, k, v);
+    for (const store::StudyTrial& tr : s.trials) {
+      Flat& row = t.rows.emplace_back(Flat{&s, &tr});
+      const json m = json::parse(tr.result_json);
+      for (const auto& [k, v] : m.items())
+        if (v.is_primitive() && !p.factor_index(k)) put(row.measures, t.measure_names, k, v);
       if (m.contains("sliders"))
         for (const auto& [k, v] : m["sliders"].items())
-          if (v.is_primitive()) put(row.measures, measure_names, "slider_" + k, v);
-      const json rated = json::parse(t.ratings_json);
+          if (v.is_primitive()) put(row.measures, t.measure_names, "slider_" + k, v);
+      const json rated = json::parse(tr.ratings_json);
       for (const auto& [k, v] : rated.items()) {
         if (v.is_object())
-          for (const auto& [axis, a] : v.items()) put(row.ratings, rating_names, k + "_" + axis, a);
+          for (const auto& [axis, a] : v.items()) put(row.ratings, t.rating_names, k + "_" + axis, a);
         else
-          put(row.ratings, rating_names, k, v);
+          put(row.ratings, t.rating_names, k, v);
       }
     }
+  return t;
+}
+
+}  // namespace
+
+std::vector<study::TrialRow> trial_rows(store::Store& store, std::string_view study) {
+  const auto sessions = load(store, study);
+  const study::Protocol p = study::parse_protocol_text(sessions.front().session.protocol_json);
+  std::vector<study::TrialRow> out;
+  for (const Flat& f : flatten(sessions, p).rows) {
+    const store::StudyTrial& t = *f.trial;
+    study::TrialRow r;
+    r.participant = f.session->session.participant;
+    r.block = static_cast<unsigned>(t.block);
+    r.trial = static_cast<unsigned>(t.trial_index);
+    r.practice = t.practice;
+    const json condition = json::parse(t.condition_json);
+    for (const study::Factor& factor : p.factors)
+      if (condition.contains(factor.name) && condition[factor.name].is_string())
+        r.levels[factor.name] = condition[factor.name].get<std::string>();
+    // Booleans (timed_out, selected) are not quantities to average, and the
+    // task's set-up (when the condition began, the list's start and target)
+    // is no outcome.
+    for (const auto& [k, v] : f.measures.items())
+      if (v.is_number() && k != "onset_s" && k != "start_value" && k != "target_value") r.measures[k] = v.get<double>();
+    for (const auto& [k, v] : f.ratings.items())
+      if (v.is_number()) r.ratings[k] = v.get<double>();
+    const json score = json::parse(t.biometrics_json).value("score", json::object());
+    r.emg_uV = micro(score, "emg_V");
+    r.sc_uS = micro(score, "sc_S");
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+void write_trials_csv(std::ostream& out, store::Store& store, std::string_view study) {
+  const auto sessions = load(store, study);
+  const study::Protocol p = study::parse_protocol_text(sessions.front().session.protocol_json);
+  const FlatTable table = flatten(sessions, p);
   out << "participant,session,block,trial,practice,stage";
   for (const study::Factor& f : p.factors) out << "," << f.name;
   out << ",started_unix,duration_s";
-  for (const std::string& m : measure_names) out << "," << m;
-  for (const std::string& r : rating_names) out << "," << r;
+  for (const std::string& m : table.measure_names) out << "," << m;
+  for (const std::string& r : table.rating_names) out << "," << r;
   out << ",emg_uV,sc_uS,capture_id\n";
-  for (const Row& row : rows) {
+  for (const Flat& row : table.rows) {
     const store::StudyTrial& t = *row.trial;
     const json condition = json::parse(t.condition_json);
     const json score = json::parse(t.biometrics_json).value("score", json::object());
@@ -155,8 +200,8 @@ void write_trials_csv(std::ostream& out, store::Store& store, std::string_view s
         << (t.practice ? 1 : 0) << "," << csv_field(t.stage);
     for (const study::Factor& f : p.factors) out << "," << csv_field(condition.value(f.name, json()));
     out << "," << csv_number(t.started_unix) << "," << csv_number(t.ended_unix - t.started_unix);
-    for (const std::string& k : measure_names) out << "," << csv_field(row.measures.value(k, json()));
-    for (const std::string& k : rating_names) out << "," << csv_field(row.ratings.value(k, json()));
+    for (const std::string& k : table.measure_names) out << "," << csv_field(row.measures.value(k, json()));
+    for (const std::string& k : table.rating_names) out << "," << csv_field(row.ratings.value(k, json()));
     const auto emg = micro(score, "emg_V"), sc = micro(score, "sc_S");
     out << "," << (emg ? csv_number(*emg) : "") << "," << (sc ? csv_number(*sc) : "") << ","
         << (t.capture_id ? std::to_string(*t.capture_id) : "") << "\n";

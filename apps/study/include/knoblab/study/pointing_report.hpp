@@ -32,8 +32,8 @@
 
 #include "knoblab/stats/correlation.hpp"
 #include "knoblab/stats/fitts.hpp"
-#include "knoblab/stats/nonparametric.hpp"
 #include "knoblab/stats/rm_anova.hpp"
+#include "knoblab/study/level_tests.hpp"
 #include "knoblab/study/tidy.hpp"
 
 namespace knoblab::study {
@@ -52,12 +52,6 @@ struct PointingCell {
   double welford_id = 0;                    // log10(A/W + 0.5), nominal W (Eq. 18, Table 27)
 };
 
-// A mean over participants with its 95 % t interval (mean ± t₀.₉₇₅,ₙ₋₁·SD/√n).
-struct ParticipantMean {
-  double mean = 0, low = 0, high = 0;
-  std::size_t participants = 0;
-};
-
 struct PointingRendering {
   std::string rendering;
   std::vector<PointingCell> cells;  // by amplitude, then width, ascending
@@ -72,16 +66,6 @@ struct PointingRendering {
   // Over the participants in the ANOVA: their mean MT in this rendering, and
   // their mean rating (what the plots draw with error bars).
   ParticipantMean movement_time_by_participant, rating_by_participant;
-};
-
-// One rendering's ratings against the control's: Wilcoxon signed-rank on the
-// participants' medians (stats::wilcoxon's defaults, scipy's: zero
-// differences dropped; exact for small samples, ties included).
-struct RatingComparison {
-  std::string rendering, control;
-  // None when every participant's median equals the control's (a note says so).
-  std::optional<stats::WilcoxonResult> test;
-  double p_bonferroni = 1;  // min(1, p × the number of comparisons)
 };
 
 struct PointingCorrelations {
@@ -100,7 +84,7 @@ struct PointingReport {
   std::vector<std::string> participants;
   stats::RmAnovaResult anova_movement_time;
   std::optional<stats::FriedmanResult> friedman_rating;  // needs ≥ 3 renderings and some variation
-  std::vector<RatingComparison> wilcoxon_rating;         // renderings 2 … k against the first
+  std::vector<RatingComparison> wilcoxon_rating;         // renderings 2 … k against the first (level = rendering)
   PointingCorrelations correlations;
   std::size_t trials = 0, acquisitions = 0;              // analysed (practice left out)
   // What was left out and why: participants missing a rendering, tests that

@@ -11,6 +11,7 @@
 #include "knoblab/store/store.hpp"
 #include "knoblab/study/protocol.hpp"
 #include "knoblab/study/tidy.hpp"
+#include "knoblab/study/trial_report.hpp"
 
 namespace knoblab::studyrun {
 
@@ -27,6 +28,12 @@ std::size_t rendering_factor(const study::Protocol& protocol);
 // row per acquisition; acquisitions never made (a trial that timed out) are
 // left out. The rating is the protocol's first scale.
 std::vector<study::PointingRow> pointing_rows(store::Store& store, std::string_view study);
+
+// Any study's committed trials, practice included (marked), as the per-trial
+// report reads them: each factor's level, the ratings and the numeric
+// measures flattened as write_trials_csv names its columns, the biometric
+// scores in µV and µS.
+std::vector<study::TrialRow> trial_rows(store::Store& store, std::string_view study);
 
 // Any study, one row per trial: participant, session, block, trial,
 // practice, stage, a column per factor (its level), started_unix,
