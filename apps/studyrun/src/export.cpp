@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <format>
 #include <map>
+#include <set>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
@@ -168,10 +169,11 @@ std::vector<study::TrialRow> trial_rows(store::Store& store, std::string_view st
       if (condition.contains(factor.name) && condition[factor.name].is_string())
         r.levels[factor.name] = condition[factor.name].get<std::string>();
     // Booleans (timed_out, selected) are not quantities to average, and the
-    // task's set-up (when the condition began, the list's start and target)
-    // is no outcome.
+    // task's set-up (when the condition began, how long exploring lasts, the
+    // list's start and target) is no outcome.
+    static const std::set<std::string> set_up = {"onset_s", "exploration_s", "start_value", "target_value"};
     for (const auto& [k, v] : f.measures.items())
-      if (v.is_number() && k != "onset_s" && k != "start_value" && k != "target_value") r.measures[k] = v.get<double>();
+      if (v.is_number() && !set_up.contains(k)) r.measures[k] = v.get<double>();
     for (const auto& [k, v] : f.ratings.items())
       if (v.is_number()) r.ratings[k] = v.get<double>();
     const json score = json::parse(t.biometrics_json).value("score", json::object());
