@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "knoblab/studyrun/biometric_score.hpp"
+#include "knoblab/studyrun/slider_tags.hpp"
 #include "knoblab/studyrun/task.hpp"
 
 namespace knoblab::studyrun {
@@ -42,6 +43,20 @@ nlohmann::json condition_json(const study::Protocol& p, const study::Trial& t) {
   return c;
 }
 
+// The novices' familiarization, before their first trial: they explore each
+// slider and label it (§3.4.1.3; experts were told the physics instead, so
+// their labels would say nothing, Table 15). Only for a session that starts
+// fresh: one resumed has had its familiarization, whether or not the
+// participant had words to keep.
+void familiarize(store::Store& store, const study::Protocol& protocol, const store::StudySession& session,
+                 Participant& participant) {
+  const auto* matching = std::get_if<study::MatchingSettings>(&protocol.settings);
+  if (matching == nullptr || matching->group != study::MatchingSettings::Group::Novice) return;
+  if (session.trials_committed > 0 || !session_slider_tags(store, session.session_id).empty()) return;
+  const SliderTags tags = participant.slider_tags(matching->sliders);
+  if (!tags.empty()) save_slider_tags(store, session.session_id, tags);
+}
+
 KnobReading next_reading(Apparatus& apparatus, const SessionOptions& o) {
   if (o.cancelled && o.cancelled()) throw Cancelled();
   return apparatus.next();
@@ -64,6 +79,7 @@ SessionResult run_session(store::Store& store, const study::Protocol& protocol, 
   const bool biometrics = protocol.biometrics.emg || protocol.biometrics.sc;
   std::optional<std::size_t> next = store.next_study_trial(session.session_id);
   result.resumed_at = next.value_or(0);
+  familiarize(store, protocol, session, participant);
   while (next && (o.max_trials == 0 || result.trials_run < o.max_trials)) {
     const study::Trial& trial = plan.trials.at(*next - 1);
     if (o.on_trial_start) o.on_trial_start(trial, plan.trials.size());

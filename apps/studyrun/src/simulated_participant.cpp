@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <map>
 #include <numbers>
+#include <string>
+#include <vector>
 
 #include "knoblab/sim/presets.hpp"
 #include "knoblab/studyrun/rendering_field.hpp"
@@ -47,6 +50,22 @@ study::Rendering felt_reference(const study::Protocol& protocol, const study::Tr
 }
 
 
+// Table 15's novices' own words for each slider (P_pos there is the
+// detent count here), a few of each row's.
+struct Vocabulary {
+  const char* parameter;
+  std::vector<const char*> words;
+};
+const Vocabulary kSliderWords[] = {
+    {"M_acc", {"weight", "whoosh", "spinny", "spin faster", "momentum", "slingy", "inertia", "smooth, but heavy"}},
+    {"B_vel", {"friction", "heavy", "like moving through mud", "spin slower & stops", "pudding", "buttery",
+               "hard to turn", "stiffer"}},
+    {"A_pos", {"bump size", "clicks", "bigness of detents", "really bumpy", "feeling bumps", "bump height", "wobbly",
+               "big clicky"}},
+    {"detents_per_rev", {"how many detents", "bump frequency", "spacing bumps", "# of bumps", "knobbly", "clicky",
+                         "frequency of detents"}},
+};
+
 }  // namespace
 
 ParticipantModel ParticipantModel::draw(std::uint64_t seed) {
@@ -60,7 +79,7 @@ ParticipantModel ParticipantModel::draw(std::uint64_t seed) {
 }
 
 SimulatedParticipant::SimulatedParticipant(sim::HandChannel& hand, ParticipantModel model, std::uint64_t seed)
-    : hand_(hand), model_(model), rng_(seed) {}
+    : hand_(hand), model_(model), seed_(seed), rng_(seed) {}
 
 void SimulatedParticipant::release() {
   hand_.send({hand_target_, 0, 0, 0});
@@ -209,6 +228,21 @@ Action SimulatedParticipant::act(const Display& d, const KnobReading& r) {
     pending_.reset();
   }
   return a;
+}
+
+std::map<std::string, std::string> SimulatedParticipant::slider_tags(const std::vector<study::Slider>& sliders) {
+  std::mt19937_64 rng(seed_ ^ 0x7A65A7A65A7A65A7ull);
+  std::map<std::string, std::string> out;
+  for (const study::Slider& s : sliders)
+    for (const Vocabulary& v : kSliderWords) {
+      if (s.parameter != v.parameter) continue;
+      const std::size_t n = v.words.size();
+      const std::size_t first = rng() % n;
+      std::string words = v.words[first];
+      if (rng() % 3 == 0) words += std::string(", ") + v.words[(first + 1 + rng() % (n - 1)) % n];  // a second, another
+      out[s.parameter] = words;
+    }
+  return out;
 }
 
 nlohmann::json SimulatedParticipant::rate(const std::vector<study::Rating>& scales, const nlohmann::json& measures) {

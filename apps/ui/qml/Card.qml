@@ -6,6 +6,9 @@ Rectangle {
     id: card
     property string title
     default property alias content: body.data
+    // The height left for the content under the title: what a scrolling
+    // content takes when the card is given its height by a layout.
+    readonly property real contentRoom: height - heading.implicitHeight - 3 * Theme.gap
 
     color: Theme.surface
     radius: Theme.radius

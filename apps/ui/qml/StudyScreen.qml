@@ -2,7 +2,9 @@
 // participant's pseudonymous code, start (a session that exists resumes)
 // and stop; follow the session (trial k of N, block, stage, condition, the
 // last trials stored); keep think-aloud notes and free-text tags with the
-// running trial; hand the screen to the participant (Participant view).
+// running trial; for a matching study, keep the participant's words for
+// each slider (Slider tags); hand the screen to the participant
+// (Participant view).
 pragma ComponentBehavior: Bound
 import QtQuick
 import QtQuick.Layouts
@@ -17,6 +19,11 @@ Item {
     property int chosen: 0
     readonly property var protocol: study.protocols.length > 0 ? study.protocols[Math.min(chosen, study.protocols.length - 1)] : ({ title: "No protocols found", kind: "", path: "", study: "" })
     readonly property bool active: study.state === "running" || study.state === "rating"
+    // The slider tags take the progress card's place while they are typed.
+    property bool tagsOpen: false
+    readonly property bool tagsOffered: study.kind === "matching" && study.protocolSliders.length > 0 && study.state !== "idle"
+    onTagsOfferedChanged: if (!tagsOffered)
+        tagsOpen = false
 
     RowLayout {
         anchors.fill: parent
@@ -94,12 +101,22 @@ Item {
                     Layout.fillWidth: true
                 }
             }
-            ActionButton {
-                objectName: "participantViewButton"
+            RowLayout {
                 Layout.fillWidth: true
-                text: "Participant view"
-                enabled: screen.active
-                onActivated: screen.participantView()
+                spacing: Theme.gap
+                ActionButton {
+                    objectName: "participantViewButton"
+                    Layout.fillWidth: true
+                    text: "Participant view"
+                    enabled: screen.active
+                    onActivated: screen.participantView()
+                }
+                ActionButton {
+                    objectName: "sliderTagsButton"
+                    visible: screen.tagsOffered
+                    text: "Slider tags"
+                    onActivated: screen.tagsOpen = !screen.tagsOpen
+                }
             }
             Text {
                 Layout.fillWidth: true
@@ -119,6 +136,7 @@ Item {
             // Where the session is.
             Card {
                 title: "Progress"
+                visible: !screen.tagsOpen
                 Layout.fillWidth: true
                 Layout.fillHeight: true
                 Text {
@@ -176,9 +194,93 @@ Item {
                 }
             }
 
+            // The novice's words for each slider (thesis Table 15: written on
+            // sticky notes in the familiarization), kept with the session.
+            Card {
+                id: tagsCard
+                objectName: "sliderTagsCard"
+                title: "Slider tags (the participant's words)"
+                visible: screen.tagsOpen
+                Layout.fillWidth: true
+                Layout.fillHeight: true
+                // It scrolls, so the field being typed in stays in sight above the keyboard.
+                Flickable {
+                    id: tagForm
+                    Layout.fillWidth: true
+                    Layout.preferredHeight: Math.max(0, tagsCard.contentRoom)
+                    clip: true
+                    contentHeight: tagColumn.implicitHeight
+                    function keepInSight() {
+                        for (let i = 0; i < tagFields.count; ++i) {
+                            const f = tagFields.itemAt(i) as LabeledField;
+                            if (!f || !f.typing)
+                                continue;
+                            const top = f.y, bottom = f.y + f.height;
+                            if (top < tagForm.contentY)
+                                tagForm.contentY = top;
+                            else if (bottom > tagForm.contentY + tagForm.height)
+                                tagForm.contentY = Math.min(bottom - tagForm.height, Math.max(0, tagForm.contentHeight - tagForm.height));
+                        }
+                    }
+                    onHeightChanged: keepInSight()
+                    ColumnLayout {
+                        id: tagColumn
+                        width: tagForm.width
+                        spacing: Theme.gap
+                        GridLayout {
+                            Layout.fillWidth: true
+                            columns: 2
+                            columnSpacing: Theme.gap
+                            rowSpacing: Theme.gap / 2
+                            Repeater {
+                                id: tagFields
+                                model: screen.study.protocolSliders
+                                LabeledField {
+                                    required property var modelData
+                                    objectName: "sliderTag." + modelData.parameter
+                                    Layout.fillWidth: true
+                                    Layout.preferredWidth: 1
+                                    label: modelData.label
+                                    maximumLength: 200
+                                    text: screen.study.sliderTags[modelData.parameter] ?? ""
+                                    onTypingChanged: tagForm.keepInSight()
+                                }
+                            }
+                        }
+                        RowLayout {
+                            Layout.fillWidth: true
+                            spacing: Theme.gap
+                            ActionButton {
+                                objectName: "saveSliderTags"
+                                text: "Save"
+                                onActivated: {
+                                    const words = {};
+                                    for (let i = 0; i < tagFields.count; ++i) {
+                                        const f = tagFields.itemAt(i) as LabeledField;
+                                        if (f)
+                                            words[screen.study.protocolSliders[i].parameter] = f.text;
+                                    }
+                                    screen.study.saveSliderTags(words);
+                                }
+                            }
+                            ActionButton {
+                                objectName: "closeSliderTags"
+                                text: "Close"
+                                onActivated: screen.tagsOpen = false
+                            }
+                            Item {
+                                Layout.fillWidth: true
+                            }
+                        }
+                    }
+                }
+            }
+
             // Think-aloud notes and tags, kept with the running trial.
             Card {
                 title: "Notes"
+                // While the slider tags are typed, the keyboard needs the room.
+                visible: !(screen.tagsOpen && screen.keyboardUp)
                 Layout.fillWidth: true
                 Layout.preferredHeight: implicitHeight
                 RowLayout {

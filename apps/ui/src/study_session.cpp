@@ -26,6 +26,7 @@
 #include "knoblab/studyrun/hapticd_apparatus.hpp"
 #include "knoblab/studyrun/session.hpp"
 #include "knoblab/studyrun/simulated_participant.hpp"
+#include "knoblab/studyrun/slider_tags.hpp"
 
 namespace knoblab::ui {
 
@@ -53,6 +54,13 @@ constexpr Term kTerms[] = {
 const Term* term(std::string_view parameter) {
   for (const Term& t : kTerms)
     if (parameter == t.parameter) return &t;
+  return nullptr;
+}
+
+// The slider of `sliders` that sets term `t`, or none.
+const study::Slider* slider_of(const std::vector<study::Slider>& sliders, const Term* t) {
+  for (const study::Slider& s : sliders)
+    if (t && s.parameter == t->parameter) return &s;
   return nullptr;
 }
 
@@ -94,6 +102,12 @@ QString condition_text(const std::string& condition_json) {
     for (const auto& [factor, level] : c.items())
       if (level.is_string()) parts << QString::fromStdString(factor + "=" + level.get<std::string>());
   return parts.join(QStringLiteral(" "));
+}
+
+QVariantMap tags_map(const studyrun::SliderTags& tags) {
+  QVariantMap out;
+  for (const auto& [parameter, words] : tags) out.insert(QString::fromStdString(parameter), QString::fromStdString(words));
+  return out;
 }
 
 QVariantMap trial_row(const store::StudyTrial& t) {
@@ -143,6 +157,13 @@ class PersonParticipant final : public studyrun::Participant {
     a.done = done_;
     done_ = false;
     return a;
+  }
+
+  // A person's words for the sliders are the experimenter's to type in
+  // (saveSliderTags); a stand-in gives its own.
+  std::map<std::string, std::string> slider_tags(const std::vector<study::Slider>& sliders) override {
+    if (stand_in) return stand_in->slider_tags(sliders);
+    return {};
   }
 
   json rate(const std::vector<study::Rating>& scales, const json& measures) override {
@@ -305,6 +326,12 @@ bool StudySession::start(const QString& protocolPath, const QString& code) {
     title_ = QString::fromStdString(p.title);
     kind_ = QString::fromStdString(std::string(study::kind_name(p.kind)));
     trials_ = static_cast<int>(study::plan(p, code.toStdString(), 0).trials.size());
+    protocol_sliders_.clear();
+    if (const auto* m = std::get_if<study::MatchingSettings>(&p.settings))
+      for (const study::Slider& s : m->sliders)
+        if (const Term* t = term(s.parameter))
+          protocol_sliders_ << QVariantMap{{QStringLiteral("parameter"), QString::fromLatin1(t->parameter)},
+                                           {QStringLiteral("label"), QString::fromLatin1(t->label)}};
   } catch (const std::exception& e) {
     emit message(QFileInfo(protocolPath).fileName() + QStringLiteral(": ") + QString::fromUtf8(e.what()),
                  QStringLiteral("error"));
@@ -314,11 +341,13 @@ bool StudySession::start(const QString& protocolPath, const QString& code) {
   participant_ = code;
   protocol_path_ = protocolPath;
   resumed_at_ = trial_ = committed_ = block_ = 0;
-  stage_.clear(), condition_.clear(), recent_.clear(), rating_scales_.clear();
+  stage_.clear(), condition_.clear(), recent_.clear(), rating_scales_.clear(), slider_tags_.clear();
+  session_id_ = 0;
   cancel_ = false;
   paused_ = false;
   emit sessionChanged();
   emit trialChanged();
+  emit sliderTagsChanged();
   set_state(QStringLiteral("running"));
   needle_timer_.start();
     auto person = std::make_shared<PersonParticipant>();
@@ -375,8 +404,8 @@ void StudySession::setSlider(const QString& parameter, double value) {
 
 double StudySession::sliderValue(const QString& parameter, double position) const {
   const Term* t = term(parameter.toStdString());
-  const auto s = std::ranges::find_if(trial_sliders_, [&](const study::Slider& x) { return t && x.parameter == t->parameter; });
-  if (s == trial_sliders_.end()) return std::numeric_limits<double>::quiet_NaN();
+  const study::Slider* s = slider_of(trial_sliders_, t);
+  if (s == nullptr) return std::numeric_limits<double>::quiet_NaN();
   try {
     return study::slider_value(*s, position) * t->factor;
   } catch (const std::invalid_argument&) {
@@ -386,8 +415,8 @@ double StudySession::sliderValue(const QString& parameter, double position) cons
 
 double StudySession::sliderPosition(const QString& parameter, double value) const {
   const Term* t = term(parameter.toStdString());
-  const auto s = std::ranges::find_if(trial_sliders_, [&](const study::Slider& x) { return t && x.parameter == t->parameter; });
-  if (s == trial_sliders_.end()) return std::numeric_limits<double>::quiet_NaN();
+  const study::Slider* s = slider_of(trial_sliders_, t);
+  if (s == nullptr) return std::numeric_limits<double>::quiet_NaN();
   try {
     return study::slider_position(*s, value / t->factor);
   } catch (const std::invalid_argument&) {
@@ -430,6 +459,50 @@ void StudySession::addNote(const QString& text, const QStringList& tags) {
   });
 }
 
+void StudySession::saveSliderTags(const QVariantMap& tags) {
+  if (session_id_ == 0) {
+    emit message(QStringLiteral("Start a session before keeping slider tags"), QStringLiteral("warning"));
+    return;
+  }
+  studyrun::SliderTags changed;
+  for (auto it = tags.cbegin(); it != tags.cend(); ++it) {
+    const QString words = it.value().toString().trimmed();
+    if (!words.isEmpty() && words != slider_tags_.value(it.key()).toString())
+      changed[it.key().toStdString()] = words.toStdString();
+  }
+  if (changed.empty()) {
+    emit message(QStringLiteral("No new slider tags to keep"), QStringLiteral("info"));
+    return;
+  }
+  // Off the UI thread, as a note: the store may be busy with another writer for a moment.
+  QPointer<StudySession> self(this);
+  notes_.start([self, changed, id = session_id_, db = options_.db] {
+    QString said, level = QStringLiteral("info");
+    bool kept = false;
+    try {
+      store::Store s = store::Store::open(db.toStdString());
+      studyrun::save_slider_tags(s, id, changed);
+      said = QStringLiteral("Slider tags kept with the session (%1)").arg(changed.size());
+      kept = true;
+    } catch (const std::exception& e) {
+      said = QStringLiteral("The slider tags were not kept: ") + QString::fromUtf8(e.what());
+      level = QStringLiteral("error");
+    }
+    if (StudySession* alive = self.data())
+      QMetaObject::invokeMethod(
+          alive,
+          [self, said, level, kept, id, words = tags_map(changed)] {
+            if (!self) return;
+            if (kept && self->session_id_ == id) {
+              for (auto it = words.cbegin(); it != words.cend(); ++it) self->slider_tags_.insert(it.key(), it.value());
+              emit self->sliderTagsChanged();
+            }
+            emit self->message(said, level);
+          },
+          Qt::QueuedConnection);
+  });
+}
+
 void StudySession::run(QString db_path, QByteArray protocol_text, QString code_q) {
   auto post = [this](auto f) { QMetaObject::invokeMethod(this, std::move(f), Qt::QueuedConnection); };
   const std::string code = code_q.toStdString();
@@ -453,8 +526,10 @@ void StudySession::run(QString db_path, QByteArray protocol_text, QString code_q
     for (auto it = done_trials.rbegin(); it != done_trials.rend() && recent.size() < 6; ++it) recent << trial_row(*it);
     const int committed = static_cast<int>(done_trials.size());
     post([this, id = session.session_id, at = static_cast<int>(next.value_or(0)), n = static_cast<int>(plan.trials.size()),
-          recent, committed] {
+          recent, committed, tags = tags_map(studyrun::session_slider_tags(db, session.session_id))] {
       session_id_ = id;
+      slider_tags_ = tags;
+      emit sliderTagsChanged();
       resumed_at_ = at;
       trials_ = n;
       recent_ = recent;
@@ -499,7 +574,17 @@ void StudySession::run(QString db_path, QByteArray protocol_text, QString code_q
         emit displayChanged();
       });
     };
-    o.on_trial_start = [this, post, &protocol](const study::Trial& t, std::size_t) {
+    bool first_trial = true;
+    o.on_trial_start = [this, post, &protocol, &db, &first_trial, id = session.session_id](const study::Trial& t,
+                                                                                         std::size_t) {
+      // A stand-in labels the sliders as the session begins (run_session's
+      // familiarization): the experimenter view shows its words.
+      if (first_trial && std::holds_alternative<study::MatchingSettings>(protocol.settings))
+        post([this, tags = tags_map(studyrun::session_slider_tags(db, id))] {
+          slider_tags_ = tags;
+          emit sliderTagsChanged();
+        });
+      first_trial = false;
       QVariantList ranges;
       for (const study::Slider& s : offered_sliders(protocol, t))
         if (const Term* term_ = term(s.parameter))

@@ -61,6 +61,13 @@ class StudySession : public QObject {
   // exponent}] in presentation units (mN·m/(rad/s²), mN·m/(rad/s), mN·m,
   // detents/rev); exponent is the slider's perceptual_exponent β.
   Q_PROPERTY(QVariantList sliderRanges READ sliderRanges NOTIFY trialChanged)
+  // A matching study's sliders, every one of the protocol (the
+  // familiarization labels them all): [{parameter, label}]; empty for
+  // another kind.
+  Q_PROPERTY(QVariantList protocolSliders READ protocolSliders NOTIFY sessionChanged)
+  // The session's slider tags as stored, the newest per slider: {parameter:
+  // words} (studyrun/slider_tags.hpp: the novices' sticky notes, Table 15).
+  Q_PROPERTY(QVariantMap sliderTags READ sliderTags NOTIFY sliderTagsChanged)
   // The participant's screen (studyrun::Display), angles in degrees.
   Q_PROPERTY(QString instruction READ instruction NOTIFY displayChanged)
   Q_PROPERTY(bool hasDisk READ hasDisk NOTIFY displayChanged)
@@ -109,6 +116,8 @@ class StudySession : public QObject {
   bool practice() const { return practice_; }
   QString condition() const { return condition_; }
   QVariantList sliderRanges() const { return slider_ranges_; }
+  QVariantList protocolSliders() const { return protocol_sliders_; }
+  QVariantMap sliderTags() const { return slider_tags_; }
   QString instruction() const { return instruction_; }
   bool hasDisk() const { return has_disk_; }
   double diskCentreDeg() const { return disk_centre_deg_; }
@@ -146,6 +155,11 @@ class StudySession : public QObject {
   Q_INVOKABLE void done();
   // A think-aloud note and free-text tags about the running trial.
   Q_INVOKABLE void addNote(const QString& text, const QStringList& tags);
+  // The participant's words for each slider, {parameter: words}, kept with
+  // the session as studyrun::save_slider_tags keeps them (one note per
+  // slider); only words that differ from those stored are written, blank
+  // ones never (a note is not taken back).
+  Q_INVOKABLE void saveSliderTags(const QVariantMap& tags);
 
  signals:
   void stateChanged();
@@ -154,6 +168,7 @@ class StudySession : public QObject {
   void displayChanged();
   void needleChanged();
   void ratingScalesChanged();
+  void sliderTagsChanged();
   void message(const QString& text, const QString& level);
 
  private:
@@ -180,6 +195,8 @@ class StudySession : public QObject {
   bool practice_ = false;
   QVariantList slider_ranges_;
   std::vector<study::Slider> trial_sliders_;  // SI, as the protocol gives them
+  QVariantList protocol_sliders_;
+  QVariantMap slider_tags_;
   QString instruction_;
   bool has_disk_ = false, needle_ = false, has_counter_ = false, has_target_ = false;
   double disk_centre_deg_ = 0, disk_width_deg_ = 0, needle_deg_ = 0;

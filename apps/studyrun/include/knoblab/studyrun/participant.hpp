@@ -3,7 +3,9 @@
 // same calls.
 #pragma once
 
+#include <map>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -32,6 +34,14 @@ class Participant {
   // or, for the affect grid, {"affect_grid": {"valence": 6, "arousal": 2}}.
   // `measures` is the trial's result (what the task measured).
   virtual nlohmann::json rate(const std::vector<study::Rating>& scales, const nlohmann::json& measures) = 0;
+  // The matching study's familiarization (§3.4.1.3): having explored each
+  // slider, the novice's words for what it does, by slider parameter (their
+  // sticky notes, Table 15). Asked once, before a novice's first trial; a
+  // participant with nothing to say (a person, whose words the experimenter
+  // types in the experimenter view) gives none.
+  virtual std::map<std::string, std::string> slider_tags(const std::vector<study::Slider>& /*sliders*/) {
+    return {};
+  }
 };
 
 }  // namespace knoblab::studyrun

@@ -17,7 +17,10 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "knoblab/sim/guided_hand.hpp"
 #include "knoblab/studyrun/participant.hpp"
@@ -46,6 +49,10 @@ class SimulatedParticipant final : public Participant {
   void begin_trial(const study::Protocol& protocol, const study::Trial& trial) override;
   Action act(const Display& display, const KnobReading& reading) override;
   nlohmann::json rate(const std::vector<study::Rating>& scales, const nlohmann::json& measures) override;
+  // One or two of the words Table 15's novices wrote for the slider's term,
+  // drawn from a generator of their own seeded by `seed`, so the words do
+  // not shift the draws of the trials.
+  std::map<std::string, std::string> slider_tags(const std::vector<study::Slider>& sliders) override;
 
   // Lets go of the knob (between sessions).
   void release();
@@ -64,6 +71,7 @@ class SimulatedParticipant final : public Participant {
 
   sim::HandChannel& hand_;
   ParticipantModel model_;
+  std::uint64_t seed_;
   std::mt19937_64 rng_;
   const study::Protocol* protocol_ = nullptr;
   study::Trial trial_;
