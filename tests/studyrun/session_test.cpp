@@ -6,6 +6,8 @@
 
 #include <atomic>
 #include <filesystem>
+#include <numbers>
+#include <optional>
 #include <sstream>
 
 #include "knoblab/study/plan.hpp"
@@ -243,6 +245,96 @@ TEST(Session, TheTrialsExportHasOneColumnPerFactorMeasureAndRatingAndARowPerTria
     EXPECT_EQ(std::count(line.begin(), line.end(), ','), columns) << line;
   }
   EXPECT_EQ(rows, 3);
+}
+
+}  // namespace
+}  // namespace knoblab::test
+
+namespace knoblab::test {
+namespace {
+
+// List selection's target finding turns the knob whole revolutions (a
+// target three items away is three turns), and the knob keeps its angle from
+// one trial to the next and from one participant to the next: there is no
+// zero a hand goes back to.
+
+// The first reach the participant asks for, in `trial`, of a knob at rest at
+// `theta` with the display `d`; none in 2 s: nullopt.
+std::optional<sim::HandCommand> first_reach(studyrun::SimulatedParticipant& participant, sim::HandChannel& hand,
+                                            const study::Protocol& protocol, const study::Trial& trial,
+                                            const studyrun::Display& d, double theta) {
+  participant.begin_trial(protocol, trial);
+  std::uint64_t seen = hand.sequence();
+  sim::HandCommand c;
+  for (int ms = 0; ms < 2000; ++ms) {
+    participant.act(d, {ms * 1e-3, theta, 0, 0});
+    if (hand.receive(seen, c)) return c;
+  }
+  return std::nullopt;
+}
+
+studyrun::Display display_off(const std::string& instruction) {
+  studyrun::Display d;  // no counter, no target: before onset, or freeform exploration
+  d.version = 1;
+  d.instruction = instruction;
+  return d;
+}
+
+const study::Trial& first_trial_of(const study::Protocol& protocol, const study::Plan& plan, const std::string& stage) {
+  for (const study::Trial& t : plan.trials)
+    if (protocol.stages.at(t.stage).name == stage) return t;
+  throw std::logic_error("no trial of stage " + stage);
+}
+
+TEST(Session, TheSimulatedParticipantExploresTheKnobWhereItIsHoweverFarTargetFindingHasTurnedIt) {
+  const study::Protocol protocol = shortened_list();
+  const study::Plan plan = study::plan(protocol, "P01", 0);
+  sim::HandChannel hand;
+  const studyrun::ParticipantModel model;
+  studyrun::SimulatedParticipant participant(hand, model, 7);
+  const double theta = -20 * std::numbers::pi;  // ten turns from where the session began
+  const auto reach = first_reach(participant, hand, protocol, first_trial_of(protocol, plan, "freeform"),
+                                 display_off("Explore the knob"), theta);
+  ASSERT_TRUE(reach.has_value());
+  EXPECT_LE(std::abs(reach->target_rad - theta), 1.5) << "back and forth across where the knob is";
+  EXPECT_LE(1.875 * std::abs(reach->target_rad - theta) / reach->duration_s, model.peak_speed_rad_s + 1e-9)
+      << "no faster than a wrist turns";
+}
+
+TEST(Session, InTargetFindingTheSimulatedParticipantWaitsForTheCounterBeforeTurningTheKnob) {
+  const study::Protocol protocol = shortened_list();
+  const study::Plan plan = study::plan(protocol, "P01", 0);
+  sim::HandChannel hand;
+  studyrun::SimulatedParticipant participant(hand, studyrun::ParticipantModel{}, 7);
+  const studyrun::Display before_onset = display_off("Turn the knob until the counter shows the target");
+  EXPECT_FALSE(first_reach(participant, hand, protocol, first_trial_of(protocol, plan, "target-finding"), before_onset,
+                           -20 * std::numbers::pi)
+                   .has_value());
+}
+
+TEST(Session, ListSelectionThroughHapticdsOwnCoreKeepsTheKnobUnderTheVelocityLimitTrialAfterTrial) {
+  Scratch scratch;
+  store::Store db = store::Store::open(scratch.dir / "lab.sqlite");
+  json protocol = example_protocol("list-selection");
+  protocol["list_selection"]["exploration_s"] = 1.5;
+  keep_levels(protocol, "knob", {"not-rendered"});  // with practice: four target-finding trials each
+  // One knob for both participants, as `knoblab study simulate` has: the
+  // second begins with the knob where the first left it, turns away.
+  studyrun::CoreApparatus core;
+  for (std::size_t index : {0u, 1u}) {
+    const std::string code = "P0" + std::to_string(index + 1);
+    studyrun::SimulatedParticipant participant(core.hand(), studyrun::ParticipantModel{}, 7 + index);
+    const auto result = studyrun::run_session(db, study::parse_protocol(protocol), protocol.dump(), code, index,
+                                              core, participant);  // throws ApparatusError on a fault
+    participant.release();
+    ASSERT_TRUE(result.finished) << code;
+    std::size_t found = 0;
+    for (const auto& t : db.study_trials(result.session_id)) {
+      const json m = json::parse(t.result_json);
+      if (m["context"] == "target") found += m["selected"].get<bool>() ? 1 : 0;
+    }
+    EXPECT_EQ(found, 4u) << code;
+  }
 }
 
 }  // namespace

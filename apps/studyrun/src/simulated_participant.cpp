@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "knoblab/sim/presets.hpp"
+#include "knoblab/studyrun/reference_knob.hpp"
 #include "knoblab/studyrun/rendering_field.hpp"
 #include "knoblab/studyrun/task.hpp"
 
@@ -33,20 +33,9 @@ int on_scale(double latent, const study::Rating& scale) {
   return static_cast<int>(std::lround(scale.min + u * (scale.max - scale.min)));
 }
 
-// The reference knob the matching participant has felt: the level's preset.
+// The reference knob the matching participant has felt.
 study::Rendering felt_reference(const study::Protocol& protocol, const study::Trial& trial) {
-  const study::Level& level = study::trial_level(protocol, trial, 0);
-  study::Rendering r;
-  if (level.rendering) return *level.rendering;
-  if (const auto* p = sim::presets::find(level.preset)) {
-    r.M_acc = p->knob.inertia.M;
-    r.B_vel = (p->knob.friction.B_pos + p->knob.friction.B_neg) / 2;
-    if (p->knob.detents.A != 0 && p->knob.detents.P > 0) {
-      r.A_pos = std::abs(p->knob.detents.A);
-      r.detents_per_rev = 1.0 / p->knob.detents.P;
-    }
-  }
-  return r;
+  return reference_rendering(study::trial_level(protocol, trial, 0)).value_or(study::Rendering{});
 }
 
 
@@ -95,6 +84,7 @@ void SimulatedParticipant::begin_trial(const study::Protocol& protocol, const st
   grip_ = model_.grip_stiffness;
   torque_sum_ = 0;
   torque_n_ = 0;
+  explore_centre_.reset();
   expected_time_s_ = 0;
   for (const study::Target& t : trial.targets)  // the acquisitions, each a reaction and a reach
     expected_time_s_ += model_.reaction_s + fitts_time(std::abs(t.centre_rad) > 0 ? std::abs(t.centre_rad) : 0.5, t.width_rad);
@@ -163,17 +153,27 @@ void SimulatedParticipant::pointing(const Display& d, const KnobReading& r) {
 
 void SimulatedParticipant::explore(const KnobReading& r) {
   if (pending_ || r.t < reach_end_t_ + 0.05) return;
-  const double side = hand_target_ > 0 ? -1.0 : 1.0;  // back and forth across where it began
-  const double aim = side * std::uniform_real_distribution<double>(0.6, 1.5)(rng_);
-  pending_ = Reach{r.t, aim, std::uniform_real_distribution<double>(0.5, 0.9)(rng_) * model_.speed};
+  // Back and forth across where this trial's exploring began. The knob has
+  // no zero a hand knows: one that target finding has left revolutions away
+  // is explored there, not first turned all the way back (a reach of tens of
+  // radians in under a second, faster than any wrist and than hapticd's
+  // velocity limit).
+  if (!explore_centre_) explore_centre_ = r.theta;
+  const double side = hand_target_ > *explore_centre_ ? -1.0 : 1.0;
+  const double aim = *explore_centre_ + side * std::uniform_real_distribution<double>(0.6, 1.5)(rng_);
+  const double duration = std::uniform_real_distribution<double>(0.5, 0.9)(rng_) * model_.speed;
+  // No faster than the wrist turns (a minimum-jerk reach peaks at 1.875·D/T).
+  pending_ = Reach{r.t, aim, std::max(duration, 1.875 * std::abs(aim - hand_target_) / model_.peak_speed_rad_s)};
 }
 
 void SimulatedParticipant::list(const Display& d, const KnobReading& r) {
-  if (!d.counter || !d.target_value) {  // the display is off: explore the knob
-    explore(r);
+  const auto& settings = std::get<study::ListSelectionSettings>(protocol_->settings);
+  if (!d.counter || !d.target_value) {
+    // The display is off: explore the knob in freeform exploration; in
+    // target finding, wait for the counter and the target to appear.
+    if (trial_.levels.at(settings.context_factor) == settings.freeform_level) explore(r);
     return;
   }
-  const auto& settings = std::get<study::ListSelectionSettings>(protocol_->settings);
   const double step = kTwoPi / settings.items_per_rev;
   const long off = *d.target_value - *d.counter;
   const bool fresh = d.version != seen_version_ && seen_version_ == 0;

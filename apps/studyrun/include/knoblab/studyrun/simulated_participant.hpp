@@ -18,6 +18,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -80,6 +81,7 @@ class SimulatedParticipant final : public Participant {
   double grip_ = 1.0;           // the grip's stiffness now, N·m/rad
   double hand_target_ = 0;      // where the last reach sent the hand
   double reach_end_t_ = 0;      // when it ends
+  std::optional<double> explore_centre_;  // where this trial's exploring began, rad
   std::optional<Reach> pending_;
   double trial_start_t_ = -1;
   double expected_time_s_ = 0;  // what the trial "should" take, for the ratings
