@@ -34,6 +34,15 @@ HapticdApparatus::HapticdApparatus(const std::string& socket, std::chrono::milli
   last_record_ = last_poll_ = std::chrono::steady_clock::now();
 }
 
+HapticdApparatus::~HapticdApparatus() {
+  if (!recording_) return;
+  try {
+    stop_trial();  // waits for hapticd to have stored it, so the next trial can start
+  } catch (...) {
+    // hapticd is gone or faulted: its recording ended with it (a destructor throws nothing).
+  }
+}
+
 nlohmann::json HapticdApparatus::call(std::string_view cmd, nlohmann::json args) {
   try {
     return client_.call(cmd, std::move(args));
@@ -62,6 +71,7 @@ void HapticdApparatus::render(const study::Rendering& r) {
 void HapticdApparatus::start_trial(const TrialLabel& label) {
   stopped_.reset();
   call("start_trial", {{"study", label.study}, {"participant", label.participant}, {"condition", label.condition}});
+  recording_ = true;
   // The trial's readings start now: what the ring holds from before (the
   // rating, the commit) is history.
   pending_.clear();
@@ -96,6 +106,7 @@ std::optional<control::Event> HapticdApparatus::wait_event(std::chrono::millisec
 }
 
 TrialRecording HapticdApparatus::stop_trial() {
+  recording_ = false;  // asked once: a refusal means there is nothing left to stop
   call("stop_trial");
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
   while (!stopped_) {

@@ -21,6 +21,12 @@ class HapticdApparatus final : public Apparatus {
   // Connects (throws ApparatusError naming the socket and the reason).
   explicit HapticdApparatus(const std::string& socket_path,
                             std::chrono::milliseconds silence_limit = std::chrono::milliseconds(1000));
+  // Stops a trial's recording left running by a session that was stopped or
+  // failed mid-trial: hapticd would refuse the next start_trial, the resumed
+  // session's, as busy.
+  ~HapticdApparatus() override;
+  HapticdApparatus(const HapticdApparatus&) = delete;
+  HapticdApparatus& operator=(const HapticdApparatus&) = delete;
   void render(const study::Rendering& rendering) override;
   void start_trial(const TrialLabel& label) override;
   TrialRecording stop_trial() override;
@@ -43,6 +49,7 @@ class HapticdApparatus final : public Apparatus {
   std::optional<study::Rendering> rendered_;
   bool render_mode_ = false;
   std::optional<TrialRecording> stopped_;  // from the trial event
+  bool recording_ = false;                 // a trial started and not yet stopped
 };
 
 }  // namespace knoblab::studyrun
