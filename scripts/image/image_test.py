@@ -645,7 +645,8 @@ def start_power_cut(con, report):
     """A study session in the background, and what it has committed once two
     trials are in and the next one's recording has samples in the store:
     the caller then kills QEMU, mid-trial."""
-    con.run(f"nohup {SIMULATE} >/var/lib/knoblab/study-before-cut.log 2>&1 &")
+    # In a subshell: the driver appends "; echo …" to the line, and "&;" is no shell.
+    con.run(f"( nohup {SIMULATE} >/var/lib/knoblab/study-before-cut.log 2>&1 & )")
     cut, deadline = {}, time.monotonic() + 300
     while time.monotonic() < deadline:
         trials = sql(con, TRIALS)
