@@ -4,15 +4,12 @@
 #include "knoblab/study/pointing_plots.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <format>
 #include <limits>
-#include <set>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
-#include "knoblab/fit/plot/text.hpp"
 #include "level_plot.hpp"
 #include "pointing_tables.hpp"
 

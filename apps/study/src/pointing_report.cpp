@@ -14,7 +14,6 @@
 #include <tuple>
 #include <utility>
 
-#include "knoblab/stats/distributions.hpp"
 #include "pointing_tables.hpp"
 
 namespace knoblab::study {

@@ -296,8 +296,8 @@ std::string format_trial_report(const TrialReport& r) {
     s += "\nMatched against the reference knobs (participants' mean setting, SI; ratio = matched / reference)\n";
     s += "  knob             parameter          reference      matched  95 % CI                      ratio\n";
     for (const MatchEstimate& m : r.matches)
-      s += std::format("  {} {} {:>10.4g} {:>12.4g}  [{:.4g}, {:.4g}]{}{}\n", pad(m.level, 16), pad(m.parameter, 16),
-                       m.reference, m.matched.mean, m.matched.low, m.matched.high, "  ",
+      s += std::format("  {} {} {:>10.4g} {:>12.4g}  [{:.4g}, {:.4g}]  {}\n", pad(m.level, 16), pad(m.parameter, 16),
+                       m.reference, m.matched.mean, m.matched.low, m.matched.high,
                        std::isfinite(m.ratio) ? std::format("{:.3f}", m.ratio) : "–");
   }
   if (!r.notes.empty()) {
