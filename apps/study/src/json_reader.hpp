@@ -1,56 +1,9 @@
-// Reading a protocol's JSON with errors that name the value's full path,
-// array indices included ("factors[1].levels[0].parameters.B_vel"). An
-// ObjectReader remembers the keys it was asked about; finish() rejects the
-// rest, so a misspelt key is an error rather than a silent default.
+// The study files read through the shared JSON reader (apps/jsonread), whose
+// PathError is the study's ProtocolError.
 #pragma once
 
-#include <cstdint>
-#include <optional>
-#include <string>
-#include <string_view>
-#include <vector>
-
-#include <nlohmann/json.hpp>
+#include "knoblab/jsonread/json_reader.hpp"
 
 namespace knoblab::study::detail {
-
-[[noreturn]] void fail(const std::string& path, const std::string& message);
-
-std::string member_path(const std::string& path, std::string_view key);  // "a.b", or "b" at the top
-std::string element_path(const std::string& path, std::size_t index);    // "a[3]"
-
-double as_number(const nlohmann::json& v, const std::string& path);  // finite
-std::uint64_t as_uint64(const nlohmann::json& v, const std::string& path);
-std::size_t as_count(const nlohmann::json& v, const std::string& path, std::size_t min, std::size_t max);
-bool as_bool(const nlohmann::json& v, const std::string& path);
-std::string as_string(const nlohmann::json& v, const std::string& path);  // non-empty
-void check_array(const nlohmann::json& v, const std::string& path, std::size_t min_size);
-
-// One of `names`, as its position there; the message lists them.
-std::size_t as_choice(const nlohmann::json& v, const std::string& path, const std::vector<std::string_view>& names);
-
-class ObjectReader {
- public:
-  ObjectReader(const nlohmann::json& json, std::string path);  // fails unless an object
-
-  const nlohmann::json* find(std::string_view key);
-  const nlohmann::json& require(std::string_view key);
-  std::string path_of(std::string_view key) const { return member_path(path_, key); }
-  const std::string& path() const { return path_; }
-
-  std::string string(std::string_view key) { return as_string(require(key), path_of(key)); }
-  std::string string_or(std::string_view key, std::string fallback);
-  double number(std::string_view key) { return as_number(require(key), path_of(key)); }
-  bool boolean(std::string_view key) { return as_bool(require(key), path_of(key)); }
-  bool boolean_or(std::string_view key, bool fallback);
-
-  // Fails on the first key of the object that nobody asked about.
-  void finish() const;
-
- private:
-  const nlohmann::json& json_;
-  std::string path_;
-  std::vector<std::string> known_;
-};
-
+using namespace knoblab::jsonread;  // NOLINT(google-build-using-namespace): the study's own reading vocabulary
 }  // namespace knoblab::study::detail

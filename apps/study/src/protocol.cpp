@@ -187,16 +187,6 @@ Biometrics parse_biometrics(const nlohmann::json& v) {
 
 }  // namespace
 
-ProtocolError::ProtocolError(std::string path, std::string message)
-    : ProtocolError(path.empty() ? message : path + ": " + message, path, message) {}
-
-ProtocolError::ProtocolError(const std::string& what, std::string path, std::string message)
-    : std::invalid_argument(what), path_(std::move(path)), message_(std::move(message)) {}
-
-ProtocolError ProtocolError::in_file(const std::string& file) const {
-  return ProtocolError(file + ": " + what(), path_, message_);
-}
-
 std::string_view kind_name(Kind kind) {
   switch (kind) {
     case Kind::Matching: return "matching";
@@ -231,7 +221,7 @@ std::optional<std::size_t> Protocol::factor_index(std::string_view name) const {
 }
 
 Protocol parse_protocol(const nlohmann::json& file) {
-  ObjectReader r(file, "");
+  ObjectReader r(file, "", "protocol");
   Protocol p;
   p.study = r.string("study");
   detail::check_name(p.study, "study");

@@ -26,23 +26,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "knoblab/jsonread/json_reader.hpp"
+
 namespace knoblab::study {
 
-class ProtocolError : public std::invalid_argument {
- public:
-  // what() is "PATH: MESSAGE" (just MESSAGE for the file as a whole).
-  ProtocolError(std::string path, std::string message);
-  // The same error, found in `file`: what() is "FILE: PATH: MESSAGE".
-  ProtocolError in_file(const std::string& file) const;
-
-  const std::string& path() const { return path_; }        // e.g. "factors[1].levels[0].name"
-  const std::string& message() const { return message_; }  // without the path
-
- private:
-  ProtocolError(const std::string& what, std::string path, std::string message);
-  std::string path_;
-  std::string message_;
-};
+// what() is "PATH: MESSAGE"; in_file() prefixes the file (apps/jsonread).
+using ProtocolError = jsonread::PathError;
 
 enum class Kind { Matching, Pointing, ListSelection, Textures };
 std::string_view kind_name(Kind kind);  // "matching", "pointing", …

@@ -1,11 +1,9 @@
-#include "json_reader.hpp"
+#include "knoblab/jsonread/json_reader.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "knoblab/study/protocol.hpp"
-
-namespace knoblab::study::detail {
+namespace knoblab::jsonread {
 
 namespace {
 
@@ -15,7 +13,15 @@ namespace {
 
 }  // namespace
 
-void fail(const std::string& path, const std::string& message) { throw ProtocolError(path, message); }
+PathError::PathError(std::string path, std::string message)
+    : PathError(path.empty() ? message : path + ": " + message, path, message) {}
+
+PathError::PathError(const std::string& what, std::string path, std::string message)
+    : std::invalid_argument(what), path_(std::move(path)), message_(std::move(message)) {}
+
+PathError PathError::in_file(const std::string& file) const { return PathError(file + ": " + what(), path_, message_); }
+
+void fail(const std::string& path, const std::string& message) { throw PathError(path, message); }
 
 std::string member_path(const std::string& path, std::string_view key) {
   return path.empty() ? std::string(key) : path + "." + std::string(key);
@@ -72,8 +78,9 @@ std::size_t as_choice(const nlohmann::json& v, const std::string& path, const st
   fail(path, "unknown value \"" + s + "\" (use " + list + ")");
 }
 
-ObjectReader::ObjectReader(const nlohmann::json& json, std::string path) : json_(json), path_(std::move(path)) {
-  if (!json_.is_object()) type_error(path_.empty() ? std::string("protocol") : path_, "an object", json_);
+ObjectReader::ObjectReader(const nlohmann::json& json, std::string path, std::string document)
+    : json_(json), path_(std::move(path)) {
+  if (!json_.is_object()) type_error(path_.empty() ? document : path_, "an object", json_);
 }
 
 const nlohmann::json* ObjectReader::find(std::string_view key) {
@@ -110,4 +117,4 @@ void ObjectReader::finish() const {
   }
 }
 
-}  // namespace knoblab::study::detail
+}  // namespace knoblab::jsonread
