@@ -102,5 +102,62 @@ TEST(Tiles, TotalTorqueSumsTiles) {
   EXPECT_DOUBLE_EQ(total_torque(time, 2.0, k), 6.0);
 }
 
+// ---- torque-valued curves (§5.3.1's torque waveforms) ----
+
+TEST(PositionTile, TorqueCurvesAddTheirTorqueAtTheAngleAndTheVelocity) {
+  PositionTile tile;
+  tile.theta_min = -1.0;
+  tile.theta_max = 1.0;
+  tile.torque_of_angle = line(-1.0, -0.02, 1.0, 0.04);      // 0.01 + 0.03θ N·m
+  tile.torque_of_velocity = line(-2.0, -0.004, 2.0, 0.004);  // 0.002 N·m·s/rad
+  // Defined at θ = 0, unlike f_pos(θ)·θ.
+  EXPECT_NEAR(tile.torque({0.0, 0.0, 0.0}), 0.01, 1e-15);
+  EXPECT_NEAR(tile.torque({0.5, 1.0, 0.0}), 0.01 + 0.015 + 0.002, 1e-15);
+  EXPECT_EQ(tile.torque({1.5, 1.0, 0.0}), 0.0) << "outside its span it adds nothing";
+  EXPECT_NEAR(tile.stiffness_at(0.3), 0.03, 1e-12);
+}
+
+TEST(PositionTile, TorqueOfVelocityContinuesStraightBeyondItsLastKnot) {
+  PositionTile tile;
+  tile.theta_min = -1.0;
+  tile.theta_max = 1.0;
+  // A damping line that flattens towards ±1 rad/s: slope 0.001 at the ends
+  // of a natural cubic (zero curvature there).
+  tile.torque_of_velocity = CubicSpline(V{-1.0, -0.5, 0.0, 0.5, 1.0}, V{-0.003, -0.002, 0.0, 0.002, 0.003});
+  const CubicSpline& g = *tile.torque_of_velocity;
+  const double slope = g.derivative(1.0);
+  ASSERT_GT(slope, 0.0);
+  // Far beyond: the tangent line, not the natural spline's end cubic.
+  EXPECT_NEAR(tile.torque({0.0, 40.0, 0.0}), 0.003 + slope * 39.0, 1e-12);
+  EXPECT_NEAR(tile.torque({0.0, -40.0, 0.0}), -0.003 - g.derivative(-1.0) * 39.0, 1e-12);
+  EXPECT_GT(tile.torque({0.0, 40.0, 0.0}), 0.0) << "a damping line keeps damping at any speed";
+  const auto [lo, hi] = tile.velocity_slope_range(50.0);
+  EXPECT_LE(lo, slope + 1e-12);
+  EXPECT_GT(hi, 0.004) << "the steepest slope is near 0, between the knots";
+}
+
+TEST(PositionTile, MassAddsToTheVirtualMassInsideItsSpanOnly) {
+  PositionTile a, b;
+  a.theta_min = 0.0;
+  a.theta_max = 1.0;
+  a.mass = line(0.0, 1e-5, 1.0, 3e-5);
+  b.theta_min = 0.5;
+  b.theta_max = 2.0;
+  b.mass = line(0.5, 1e-5, 2.0, 1e-5);
+  const std::vector<PositionTile> tiles = {a, b};
+  EXPECT_NEAR(total_mass(tiles, 0.25), 1.5e-5, 1e-18);
+  EXPECT_NEAR(total_mass(tiles, 0.75), 2.5e-5 + 1e-5, 1e-18) << "overlapping tiles add up";
+  EXPECT_EQ(total_mass(tiles, 3.0), 0.0);
+  EXPECT_EQ(a.torque({0.5, 1.0, 100.0}), 0.0) << "mass is not rendered as a torque of θ̈";
+}
+
+TEST(TimeTile, TorqueCurveIsATorqueOverTime) {
+  TimeTile tile;
+  tile.duration = 1.0;
+  tile.torque_of_time = line(0.0, 0.0, 1.0, 0.05);
+  EXPECT_NEAR(tile.torque(0.4, {2.0, 3.0, 4.0}), 0.02, 1e-15) << "whatever the knob does";
+  EXPECT_EQ(tile.torque(1.5, {2.0, 3.0, 4.0}), 0.0);
+}
+
 }  // namespace
 }  // namespace knoblab::model
