@@ -244,6 +244,15 @@ TEST(Schema, GroupRules) {
             "time[1].f_acc.x")
       << "a problem deep in a list names its element";
   EXPECT_EQ(refusal(Command::load_tiles, "{}"), std::nullopt) << "{} clears the tiles";
+  EXPECT_EQ(refusal(Command::load_tiles,
+                    R"({"position":[{"theta_min":0,"theta_max":1,"torque_of_velocity":{"x":[-1,1],"y":[-0.001,0.001]}}],)"
+                    R"("time":[{"duration":1,"torque":{"x":[0,1],"y":[0,0.01]}}]})"),
+            std::nullopt)
+      << "a torque curve alone makes a tile";
+  EXPECT_EQ(refusal(Command::load_tiles, R"({"position":[{"theta_min":0,"theta_max":1,"mass":{"x":[0,1]}}]})"),
+            "position[0].mass.y");
+  EXPECT_EQ(refusal(Command::load_tiles, R"({"time":[{"duration":1,"mass":{"x":[0,1],"y":[0,0]}}]})"), "time[0].mass")
+      << "mass is a position tile's";
 }
 
 // docs/protocol.md carries the table rendered by schema_markdown() between

@@ -115,10 +115,16 @@ std::unique_ptr<TileSet> tile_set(double damping) {
   p.f_vel = model::CubicSpline(x, b);
   p.theta_min = -3.0;
   p.theta_max = 3.0;
+  // The torque-valued curves and the mass that joins the virtual mass.
+  const std::vector<double> tau = {-0.01, 0.0, 0.01}, v = {-1.0, 0.0, 1.0}, m = {1e-5, 2e-5, 1e-5};
+  p.torque_of_angle = model::CubicSpline(x, tau);
+  p.torque_of_velocity = model::CubicSpline(v, tau);
+  p.mass = model::CubicSpline(x, m);
   set->position.push_back(p);
   model::TimeTile t;
   const std::vector<double> ts = {0.0, 0.005, 0.01}, k = {0.0, 0.01, 0.0};
   t.f_pos = model::CubicSpline(ts, k);
+  t.torque_of_time = model::CubicSpline(ts, k);
   t.duration = 0.01;
   t.loop = true;
   set->time.push_back(t);
@@ -137,10 +143,10 @@ TEST(CycleAllocations, RenderingTilesSwappingThemAndRecalibratingAllocateNothing
   for (int i = 0; i < 5; ++i) {  // a designer dragging a point while it plays
     auto next = tile_set(1e-3 * (i + 2));
     while (!rig.core().load_tiles(std::move(next))) rig.run(1);
-    rig.run(20);
+    rig.run(20);  // mid-fade: the next one waits for it
   }
-  ASSERT_TRUE(rig.core().load_tiles(nullptr));
-  rig.run(10);
+  while (!rig.core().load_tiles(nullptr)) rig.run(1);
+  rig.run(600);  // faded out; the last set is back with the publisher
   CoreCommand cal;
   cal.kind = CoreCommand::SetSensorCalibration;
   cal.sensors = rig.daq().calibration();

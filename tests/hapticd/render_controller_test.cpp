@@ -167,9 +167,10 @@ TEST(RenderController, PositionAndTimeTilesAddToTheModel) {
   tiles->position.push_back(pt);
   ASSERT_TRUE(b.rc.load_tiles(std::move(tiles)));
   auto at = [](double) { return 0.4; };
-  EXPECT_NEAR(b.torque_of(b.run(at, 50)), 0.5 * 0.4, 1e-4);  // f_pos(θ)·θ
+  // Faded in over the ramp (500 cycles), then f_pos(θ)·θ.
+  EXPECT_NEAR(b.torque_of(b.run(at, 600)), 0.5 * 0.4, 1e-4);
   auto outside = [](double) { return 1.5; };
-  EXPECT_NEAR(b.torque_of(b.run(outside, 50, 50)), 0.0, 1e-4);
+  EXPECT_NEAR(b.torque_of(b.run(outside, 50, 600)), 0.0, 1e-4);
 
   // Replace with a time tile: f_pos(t) = 0.1·t for 1 s (Eq. 20), at θ = 0.4.
   auto next = std::make_unique<TileSet>();
@@ -179,11 +180,66 @@ TEST(RenderController, PositionAndTimeTilesAddToTheModel) {
   tt.duration = 1.0;
   next->time.push_back(tt);
   ASSERT_TRUE(b.rc.load_tiles(std::move(next)));
-  const double v = b.run(at, 5001, 100);  // 0.5 s after the set started
+  const double v = b.run(at, 5001, 650);  // 0.5 s after the set started
   EXPECT_NEAR(b.torque_of(v), 0.05 * 0.4, 1e-3);
-  // Clearing leaves the bare model (here: nothing).
+  // Clearing fades to the bare model (here: nothing).
   ASSERT_TRUE(b.rc.load_tiles(nullptr));
-  EXPECT_NEAR(b.torque_of(b.run(at, 10, 6000)), 0.0, 1e-6);
+  EXPECT_NEAR(b.torque_of(b.run(at, 600, 6000)), 0.0, 1e-6);
+}
+
+// A set with a torque curve, at a fixed angle.
+std::unique_ptr<TileSet> constant_torque(double tau) {
+  auto set = std::make_unique<TileSet>();
+  model::PositionTile t;
+  t.theta_min = -1.0;
+  t.theta_max = 1.0;
+  const std::vector<double> x = {-1.0, 1.0}, y = {tau, tau};
+  t.torque_of_angle = model::CubicSpline(x, y);
+  set->position.push_back(t);
+  return set;
+}
+
+double largest_step(const std::vector<double>& v) {
+  double m = 0.0;
+  for (std::size_t i = 1; i < v.size(); ++i) m = std::max(m, std::abs(v[i] - v[i - 1]));
+  return m;
+}
+
+TEST(RenderController, ANewTileSetCrossFadesFromTheOldOneWithoutAStepInTorque) {
+  Bench b;
+  auto at = [](double) { return 0.3; };
+  ASSERT_TRUE(b.rc.load_tiles(constant_torque(0.06)));  // +60 mN·m at the knob's angle
+  EXPECT_NEAR(b.torque_of(b.run(at, 600)), 0.06, 1e-9);
+  // Swapped for −60 mN·m while playing: 120 mN·m between the two sets.
+  ASSERT_TRUE(b.rc.load_tiles(constant_torque(-0.06)));
+  std::vector<double> volts;
+  b.run(at, 700, 600, 0.0, &volts);
+  std::vector<double> torque;
+  for (const double v : volts) torque.push_back(b.torque_of(v));
+  EXPECT_NEAR(torque.front(), 0.06, 1e-9) << "the swap's first cycle still feels the old set";
+  EXPECT_NEAR(torque.back(), -0.06, 1e-9);
+  // Linear over kParamRampSeconds (500 cycles): 0.12 N·m / 500 = 0.24 mN·m
+  // a cycle, where swapping at once stepped by all 120 mN·m.
+  EXPECT_LT(largest_step(torque), 0.12 / 400.0);
+  EXPECT_NEAR(torque[250], 0.0, 0.12 / 400.0) << "halfway, the two sets weigh the same";
+}
+
+TEST(RenderController, AnotherSetWaitsUntilTheFadeIsOverAndTheOldSetComesBackForDeletion) {
+  Bench b;
+  auto at = [](double) { return 0.3; };
+  ASSERT_TRUE(b.rc.load_tiles(constant_torque(0.02)));
+  b.run(at, 1);  // taken: fading in
+  ASSERT_TRUE(b.rc.load_tiles(constant_torque(0.04)));  // offered, waits for the fade
+  auto third = constant_torque(0.08);
+  EXPECT_FALSE(b.rc.load_tiles(std::move(third))) << "one offer at a time";
+  ASSERT_TRUE(third);
+  b.run(at, 100, 1);
+  EXPECT_NEAR(b.torque_of(b.run(at, 1, 101)), 0.02 * 101.0 / 500.0, 1e-6) << "still the first set fading in";
+  b.run(at, 1000, 102);
+  EXPECT_NEAR(b.torque_of(b.run(at, 1, 1102)), 0.04, 1e-9);
+  EXPECT_TRUE(b.rc.load_tiles(std::move(third))) << "taken once both fades are over";
+  b.run(at, 600, 1103);
+  EXPECT_NEAR(b.torque_of(b.run(at, 1, 1703)), 0.08, 1e-9);
 }
 
 TEST(Handoff, OffersAreTakenInOrderAndOldObjectsComeBackForDeletion) {
@@ -201,6 +257,28 @@ TEST(Handoff, OffersAreTakenInOrderAndOldObjectsComeBackForDeletion) {
   EXPECT_EQ(h.current(), nullptr);
   ASSERT_TRUE(h.publish(std::move(kept)));
   EXPECT_EQ(*h.current(), 5);
+}
+
+TEST(Handoff, AFadingLoopKeepsTheReplacedObjectUntilItReleasesIt) {
+  Handoff<int> h;
+  ASSERT_TRUE(h.publish(std::make_unique<int>(1)));
+  ASSERT_TRUE(h.take_keeping_previous());
+  ASSERT_TRUE(h.release_previous());  // nothing before it
+  ASSERT_TRUE(h.publish(std::make_unique<int>(2)));
+  ASSERT_TRUE(h.take_keeping_previous());
+  EXPECT_EQ(*h.held(), 2);
+  ASSERT_TRUE(h.previous());
+  EXPECT_EQ(*h.previous(), 1) << "alive while it fades";
+  ASSERT_TRUE(h.publish(std::make_unique<int>(3)));
+  EXPECT_FALSE(h.take_keeping_previous()) << "no new object while the old one is held";
+  ASSERT_TRUE(h.release_previous());
+  ASSERT_TRUE(h.take_keeping_previous()) << "released: the waiting offer is taken, no publish needed";
+  ASSERT_TRUE(h.release_previous()) << "a second slot holds it until the next publish reclaims both";
+  EXPECT_EQ(*h.held(), 3);
+  ASSERT_TRUE(h.publish(nullptr));
+  ASSERT_TRUE(h.take_keeping_previous());
+  EXPECT_EQ(h.held(), nullptr);
+  EXPECT_EQ(*h.previous(), 3);
 }
 
 }  // namespace

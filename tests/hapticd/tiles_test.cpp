@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdio>
+#include <string>
 #include <thread>
 
 #include <nlohmann/json.hpp>
@@ -13,6 +15,7 @@
 #include "knoblab/hal/memory_lines.hpp"
 #include "knoblab/hapticd/control_handler.hpp"
 #include "knoblab/hapticd/daemon.hpp"
+#include "knoblab/hapticd/render_controller.hpp"
 #include "knoblab/hapticd/tiles_json.hpp"
 #include "shared_host.hpp"
 
@@ -99,6 +102,120 @@ TEST(TilesJson, ATileWhoseRangeIsEmptyIsRefused) {
   EXPECT_EQ(p->key, "position[0].theta_max");
 }
 
+// ---- torque-valued curves and the loop's stability ----
+
+json curve(std::vector<double> x, std::vector<double> y) { return {{"x", x}, {"y", y}}; }
+
+json torque_tile(double lo, double hi, double slope) {
+  return {{"theta_min", lo}, {"theta_max", hi}, {"torque", curve({lo, hi}, {slope * lo, slope * hi})}};
+}
+
+TEST(TilesJson, TorqueVelocityTorqueAndMassCurvesParseIntoTheTiles) {
+  const json args = {
+      {"position",
+       {{{"theta_min", -1.0},
+         {"theta_max", 1.0},
+         {"torque", curve({-1.0, 0.0, 1.0}, {0.0, 0.02, 0.0})},
+         {"torque_of_velocity", curve({-2.0, 2.0}, {-0.004, 0.004})},
+         {"mass", curve({-1.0, 1.0}, {1e-5, 1e-5})}}}},
+      {"time", {{{"duration", 0.5}, {"torque", curve({0.0, 0.5}, {0.0, 0.05})}}}}};
+  auto r = tiles_from_json(args, kLimits);
+  ASSERT_TRUE(std::holds_alternative<std::unique_ptr<TileSet>>(r)) << std::get<ParamProblem>(r).message;
+  const TileSet& set = *std::get<std::unique_ptr<TileSet>>(r);
+  EXPECT_NEAR(set.position[0].torque({0.0, 1.0, 0.0}), 0.02 + 0.002, 1e-12);
+  EXPECT_NEAR(set.position[0].mass_at(0.3), 1e-5, 1e-15);
+  EXPECT_NEAR(set.time[0].torque(0.25, {}), 0.025, 1e-12);
+}
+
+TEST(TilesJson, TorqueCurvesBeyondTheTorqueLimitAreRefusedNamingTheCurve) {
+  auto p = problem_of({{"position", {{{"theta_min", 0.0}, {"theta_max", 1.0}, {"torque", curve({0.0, 1.0}, {0.0, 0.2})}}}}});
+  ASSERT_TRUE(p);
+  EXPECT_EQ(p->key, "position[0].torque");
+  EXPECT_NE(p->message.find("beyond the device's torque limit of 180 mN·m"), std::string::npos) << p->message;
+  // 4 mN·m·s/rad is 200 mN·m at the 50 rad/s velocity limit, though only
+  // 8 mN·m at its last knot: the line goes on.
+  p = problem_of({{"position", {{{"theta_min", 0.0}, {"theta_max", 1.0}, {"torque_of_velocity", curve({-2.0, 2.0}, {-0.008, 0.008})}}}}});
+  ASSERT_TRUE(p);
+  EXPECT_EQ(p->key, "position[0].torque_of_velocity");
+  EXPECT_NE(p->message.find("reaches -200 mN·m at θ̇ = -50 rad/s"), std::string::npos) << p->message;
+  p = problem_of({{"time", {{{"duration", 1.0}, {"torque", curve({0.0, 1.0}, {0.0, -0.25})}}}}});
+  ASSERT_TRUE(p);
+  EXPECT_EQ(p->key, "time[0].torque");
+}
+
+TEST(TilesJson, MassBelowZeroBetweenKnotsOrAboveTheRenderersMaximumIsRefused) {
+  auto p = problem_of({{"position", {{{"theta_min", -1.0}, {"theta_max", 1.0},
+                                      {"mass", curve({-1.0, -0.5, 0.0, 0.5, 1.0}, {0.0, 0.0, 1e-4, 0.0, 0.0})}}}}});
+  ASSERT_TRUE(p);
+  EXPECT_EQ(p->key, "position[0].mass");
+  EXPECT_NE(p->message.find("below zero"), std::string::npos) << p->message;
+  p = problem_of({{"position", {{{"theta_min", -1.0}, {"theta_max", 1.0}, {"mass", curve({-1.0, 1.0}, {1e-3, 2e-3})}}}}});
+  ASSERT_TRUE(p);
+  EXPECT_EQ(p->key, "position[0].mass");
+  EXPECT_NE(p->message.find("1.5 mN·m/(rad/s²)"), std::string::npos) << p->message;
+  // Two tiles within it alone, beyond it where they overlap.
+  const json half = {{"theta_min", -1.0}, {"theta_max", 1.0}, {"mass", curve({-1.0, 1.0}, {1e-3, 1e-3})}};
+  EXPECT_FALSE(problem_of({{"position", {half}}}));
+  p = problem_of({{"position", {half, half}}});
+  ASSERT_TRUE(p);
+  EXPECT_NE(p->message.find("together"), std::string::npos) << p->message;
+}
+
+std::string four_digits(double v) {  // as refusals print numbers
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", v);
+  return buf;
+}
+
+const model::LoopStability& default_loop() {
+  static const model::LoopStability loop{RenderController::loop_dynamics(10000.0)};
+  return loop;
+}
+
+TEST(TilesJson, AStiffnessBeyondTheLoopsStableRegionIsRefusedInNumbers) {
+  const double k_max = default_loop().max_stiffness(0.0);
+  // A spring as stiff as 1.5 × the bound over a span where its torque stays
+  // within the limit.
+  const double k = 1.5 * k_max, span = 0.15 / k;
+  const auto p = problem_of({{"position", {torque_tile(-span, span, k)}}});
+  ASSERT_TRUE(p);
+  EXPECT_EQ(p->key, "position[0].torque");
+  EXPECT_NE(p->message.find("its stiffness reaches " + four_digits(k) + " N·m/rad"), std::string::npos)
+      << p->message;
+  EXPECT_NE(p->message.find("beyond the 10 kHz loop's stable " + four_digits(k_max) + " N·m/rad with 0 N·m·s/rad damping there"),
+            std::string::npos)
+      << p->message;
+  EXPECT_FALSE(problem_of({{"position", {torque_tile(-span, span, 0.8 * k_max)}}}));
+}
+
+TEST(TilesJson, OverlappingStiffTilesAddUpAgainstTheStableRegion) {
+  const double k = 0.6 * default_loop().max_stiffness(0.0), span = 0.08 / k;
+  const json one = torque_tile(-span, span, k);
+  EXPECT_FALSE(problem_of({{"position", {one}}}));
+  const auto p = problem_of({{"position", {one, one}}});
+  ASSERT_TRUE(p);
+  EXPECT_NE(p->message.find("the tiles there together"), std::string::npos) << p->message;
+  // The same spring as f_pos (Eq. 19): its stiffness is d(f_pos·θ)/dθ.
+  const json spring = {{"theta_min", -span}, {"theta_max", span}, {"f_pos", curve({-span, span}, {k, k})}};
+  const auto q = problem_of({{"position", {one, spring}}});
+  ASSERT_TRUE(q);
+}
+
+TEST(TilesJson, ADampingDownSlopeSteeperThanTheGripIsRefused) {
+  // A local fall of more than 20 mN·m·s/rad around rest, twice the grip's
+  // damping, flat beyond 0.5 rad/s (so within the torque limit at any speed).
+  const std::vector<double> v = {-50.0, -0.5, -0.05, 0.0, 0.05, 0.5, 50.0};
+  const json tile = {{"theta_min", -3.0}, {"theta_max", 3.0},
+                     {"torque_of_velocity", curve(v, {0.0, 0.0, 0.001, 0.0, -0.001, 0.0, 0.0})}};
+  const auto p = problem_of({{"position", {tile}}});
+  ASSERT_TRUE(p);
+  EXPECT_EQ(p->key, "position[0].torque_of_velocity");
+  EXPECT_NE(p->message.find("falls to"), std::string::npos) << p->message;
+  json gentle = tile;
+  gentle["torque_of_velocity"] = curve(v, {0.0, 0.0, 0.0002, 0.0, -0.0002, 0.0, 0.0});
+  EXPECT_FALSE(problem_of({{"position", {gentle}}})) << "a down-slope the grip outweighs renders";
+}
+
 // ---- in the loop ----
 
 TEST(Tiles, ASpringTileLoadedWhileIdleIsFeltOnEnteringRender) {
@@ -124,8 +241,8 @@ TEST(Tiles, ASpringTileLoadedWhileIdleIsFeltOnEnteringRender) {
   EXPECT_NEAR(-first.sample.command * tpv, 0.05 * first.sample.theta, 2e-4) << "θ = " << first.sample.theta;
   EXPECT_GT(first.sample.theta, 0.45);
   ASSERT_TRUE(h.core().load_tiles(nullptr));
-  const LoopRecord cleared = h.step();
-  EXPECT_NEAR(cleared.sample.command, 0.0, 1e-3);
+  h.run(600);  // faded out over the ramp
+  EXPECT_NEAR(h.records.back().sample.command, 0.0, 1e-3);
 }
 
 TEST(LoadTiles, TwoSetsInARowBothReachTheLoopAndGetStateCountsTheLoadedOne) {

@@ -220,34 +220,44 @@ constexpr std::array kAcceptArgs = {
             "average this many of the latest good runs of that kind (default 3, as the thesis did)"),
 };
 
-// load_tiles: the prototyper's tiles (Eq. 19/20). A curve is a cubic spline
-// through knots; its unit is the term's coefficient (stiffness, damping, mass).
+// load_tiles: the prototyper's tiles (Eq. 19/20, and §5.3.1's torque
+// waveforms). A curve is a cubic spline through knots; its unit is the
+// term's: a coefficient (stiffness, damping, mass) or a torque.
 constexpr std::array kSplineArgs = {
-    number_list("x", kRequired, {2, 256}, {-1e4, 1e4}, "rad or s",
-                "knots, strictly increasing (θ for position tiles, t for time tiles)"),
+    number_list("x", kRequired, {2, 256}, {-1e4, 1e4}, "rad, s or rad/s",
+                "knots, strictly increasing (θ for position tiles, t for time tiles, θ̇ for torque_of_velocity)"),
     number_list("y", kRequired, {2, 256}, {-1e3, 1e3}, "",
-                "values at the knots, as many as x: N·m/rad (f_pos), N·m·s/rad (f_vel), kg·m² (f_acc)"),
+                "values at the knots, as many as x: N·m/rad (f_pos), N·m·s/rad (f_vel), kg·m² (f_acc, mass), "
+                "N·m (torque, torque_of_velocity)"),
     boolean("periodic", kOptional, "the curve repeats (y's ends equal); default: natural cubic ends"),
 };
 constexpr ObjectSchema kSpline{kSplineArgs, {}};
-constexpr std::array<std::string_view, 3> kTileTerms = {"f_pos", "f_vel", "f_acc"};
-constexpr std::array kTileGroups = {GroupRule{GroupRule::Kind::at_least_one, kTileTerms}};
+constexpr std::array<std::string_view, 6> kPositionTileTerms = {"f_pos",  "f_vel",              "f_acc",
+                                                                "torque", "torque_of_velocity", "mass"};
+constexpr std::array kPositionTileGroups = {GroupRule{GroupRule::Kind::at_least_one, kPositionTileTerms}};
 constexpr std::array kPositionTileArgs = {
     number("theta_min", kRequired, -1000, 1000, "rad", "the tile acts from this angle"),
     number("theta_max", kRequired, -1000, 1000, "rad", "up to this angle (more than theta_min)"),
     object("f_pos", kOptional, &kSpline, "stiffness over θ: τ += f_pos(θ)·θ"),
     object("f_vel", kOptional, &kSpline, "damping over θ: τ += f_vel(θ)·θ̇"),
     object("f_acc", kOptional, &kSpline, "mass over θ: τ += f_acc(θ)·θ̈"),
+    object("torque", kOptional, &kSpline, "torque over θ (absolute): τ += torque(θ)"),
+    object("torque_of_velocity", kOptional, &kSpline,
+           "torque over θ̇: τ += torque_of_velocity(θ̇), straight along its end slopes beyond its knots"),
+    object("mass", kOptional, &kSpline, "mass over θ (kg·m², ≥ 0), added to the virtual mass"),
 };
-constexpr ObjectSchema kPositionTile{kPositionTileArgs, kTileGroups};
+constexpr ObjectSchema kPositionTile{kPositionTileArgs, kPositionTileGroups};
+constexpr std::array<std::string_view, 4> kTimeTileTerms = {"f_pos", "f_vel", "f_acc", "torque"};
+constexpr std::array kTimeTileGroups = {GroupRule{GroupRule::Kind::at_least_one, kTimeTileTerms}};
 constexpr std::array kTimeTileArgs = {
     number("duration", kRequired, 0.001, 3600, "s", "the tile acts for this long after loading"),
     boolean("loop", kOptional, "repeat every duration (default false: once)"),
     object("f_pos", kOptional, &kSpline, "stiffness over t: τ += f_pos(t)·θ"),
     object("f_vel", kOptional, &kSpline, "damping over t: τ += f_vel(t)·θ̇"),
     object("f_acc", kOptional, &kSpline, "mass over t: τ += f_acc(t)·θ̈"),
+    object("torque", kOptional, &kSpline, "torque over t: τ += torque(t)"),
 };
-constexpr ObjectSchema kTimeTile{kTimeTileArgs, kTileGroups};
+constexpr ObjectSchema kTimeTile{kTimeTileArgs, kTimeTileGroups};
 constexpr std::array kTilesArgs = {
     object_list("position", kOptional, {0, 16}, &kPositionTile, "position tiles (Eq. 19)"),
     object_list("time", kOptional, {0, 16}, &kTimeTile, "time tiles (Eq. 20), timed from when they load"),

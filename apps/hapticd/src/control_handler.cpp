@@ -178,16 +178,19 @@ Reply ControlHandler::render(const json& a, bool partial) {
 }
 
 Reply ControlHandler::load_tiles(const json& a) {
-  auto parsed = tiles_from_json(a, daemon_.config().core.limits);
+  auto parsed = tiles_from_json(a, daemon_.config().core.limits,
+                                RenderController::loop_dynamics(daemon_.config().core.rate_hz));
   if (auto* problem = std::get_if<ParamProblem>(&parsed))
     return Reply::failure(ErrorCode::bad_args, problem->message, problem->key);
   auto& set = std::get<std::unique_ptr<TileSet>>(parsed);
   const json counts = {{"position", set->position.size()}, {"time", set->time.size()}};
   if (set->position.empty() && set->time.empty()) set.reset();  // {} clears
-  // The loop takes an offered set every cycle; a second load right after
-  // the first waits for that cycle.
+  // The loop takes an offered set every cycle once the fade before it is
+  // over; a load right after another waits for that (up to the fades of the
+  // two before it, kParamRampSeconds each).
+  const int attempts = 100 + static_cast<int>(2000.0 * kParamRampSeconds);  // 1 ms apart
   for (int attempt = 0; !daemon_.core().load_tiles(std::move(set)); ++attempt) {
-    if (attempt == 100) return Reply::failure(ErrorCode::busy, "the loop is not taking tiles (is it running?)");
+    if (attempt == attempts) return Reply::failure(ErrorCode::busy, "the loop is not taking tiles (is it running?)");
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
   tiles_ = counts;

@@ -45,13 +45,31 @@ void RenderController::reset() {
   }
   effects_gain_.set(1.0);
   tiles_start_t_ = 0.0;  // time tiles start over with the render clock
+  if (tiles_.has_previous() && tiles_.release_previous()) previous_tiles_ = nullptr;  // nothing felt yet: no fade
+  tiles_fade_.set(1.0);
+}
+
+model::LoopDynamics RenderController::loop_dynamics(double rate_hz) {
+  const capture::SensorConfig sensors;  // the front end's render velocity filter
+  model::LoopDynamics d;
+  d.rate_hz = rate_hz;
+  d.velocity_filter_order = sensors.velocity_filter_order;
+  d.velocity_cutoff_hz = std::min(sensors.render_velocity_cutoff_hz, 0.2 * rate_hz);
+  return d;
 }
 
 void RenderController::take_tiles() {
-  const TileSet* tiles = tiles_.current();
-  if (tiles == active_tiles_) return;
-  active_tiles_ = tiles;
+  // The fade runs whatever the mode, so a set loaded while idle is whole
+  // by the time it is felt.
+  if (tiles_.has_previous() && tiles_fade_.step() >= 1.0 && tiles_.release_previous()) previous_tiles_ = nullptr;
+  if (!tiles_.take_keeping_previous()) return;
+  previous_tiles_ = active_tiles_;
+  previous_start_t_ = tiles_start_t_;
+  active_tiles_ = tiles_.held();
   tiles_start_t_ = static_cast<double>(cycle_) * dt_;
+  // This cycle still feels the old set whole; the new one grows from here.
+  tiles_fade_.set(0.0);
+  tiles_fade_.retarget(1.0, std::max(ramp_cycles_, 1));
 }
 
 void RenderController::update(const capture::SensorReading& in, capture::DaqOutputs& out,
@@ -66,7 +84,14 @@ void RenderController::update(const capture::SensorReading& in, capture::DaqOutp
     started_ = true;
   }
 
-  const double M = M_.step(), B = B_.step(), A = A_.step(), f = f_.step();
+  const double B = B_.step(), A = A_.step(), f = f_.step();
+  // Tiles' mass joins the virtual mass (its coupling renders any mass
+  // stably; feeding back an estimated θ̈ would not), cross-faded like their torque.
+  const double w_new = tiles_.has_previous() ? tiles_fade_.value() : 1.0;
+  const double w_old = tiles_.has_previous() ? 1.0 - w_new : 0.0;
+  double M = M_.step();
+  if (active_tiles_) M += w_new * model::total_mass(active_tiles_->position, s.theta);
+  if (previous_tiles_) M += w_old * model::total_mass(previous_tiles_->position, s.theta);
   const double g = effects_gain_.step();
   if (effects_pending_ && g == 0.0) {  // faded out: the new set fades in
     effects_ = next_effects_;
@@ -95,10 +120,13 @@ void RenderController::update(const capture::SensorReading& in, capture::DaqOutp
   // Prototyper tiles: acceleration from the filtered velocity, box-smoothed.
   const double alpha_est = alpha_box_.process((s.omega - prev_omega_) / dt_);
   prev_omega_ = s.omega;
-  if (const TileSet* tiles = active_tiles_) {
-    const model::Kinematics<double> kt{s.theta, s.omega, alpha_est};
-    tau += model::total_torque(tiles->position, kt) + model::total_torque(tiles->time, s.t - tiles_start_t_, kt);
-  }
+  const model::Kinematics<double> kt{s.theta, s.omega, alpha_est};
+  if (const TileSet* tiles = active_tiles_)
+    tau += w_new * (model::total_torque(tiles->position, kt) +
+                    model::total_torque(tiles->time, s.t - tiles_start_t_, kt));
+  if (const TileSet* tiles = previous_tiles_)
+    tau += w_old * (model::total_torque(tiles->position, kt) +
+                    model::total_torque(tiles->time, s.t - previous_start_t_, kt));
 
   // The knob resists with τ, so the motor pushes with −τ.
   s.command = -tau / cfg_.torque_per_volt;

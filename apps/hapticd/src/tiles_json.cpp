@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "knoblab/model/render_stability.hpp"
 #include "short_number.hpp"
 
 namespace knoblab::hapticd {
@@ -63,7 +64,7 @@ void require_non_negative(const CubicSpline& f, double lo, double hi, const std:
                     ": below zero it would feed energy into the knob");
 }
 
-// The three curves of a tile, each optional, checked on [lo, hi].
+// The three curves of Eq. 19/20, each optional, checked on [lo, hi].
 template <typename Tile>
 void read_terms(const json& j, const std::string& key, double lo, double hi, Tile& tile) {
   if (j.contains("f_pos")) tile.f_pos = spline_from(j.at("f_pos"), key + ".f_pos");
@@ -75,6 +76,27 @@ void read_terms(const json& j, const std::string& key, double lo, double hi, Til
     tile.f_acc = spline_from(j.at("f_acc"), key + ".f_acc");
     require_non_negative(*tile.f_acc, lo, hi, key + ".f_acc", "the mass");
   }
+}
+
+// A torque curve's peak on [lo, hi] (evaluated by `f`), refused past the
+// limit: the supervisor would clip it, and it would not feel as designed.
+template <typename Eval>
+void require_within_torque_limit(const CubicSpline& curve, Eval f, double lo, double hi, const std::string& key,
+                                 const char* variable, const char* unit, const SafetyLimits& limits) {
+  for (const double x : check_points(curve, lo, hi))
+    if (const double tau = f(x); std::abs(tau) > limits.torque_limit_Nm)
+      fail(key, std::string("its torque reaches ") + short_number(tau * 1e3) + " mN·m at " + variable + " = " +
+                    short_number(x) + " " + unit + ", beyond the device's torque limit of " +
+                    short_number(limits.torque_limit_Nm * 1e3) + " mN·m");
+}
+
+void require_mass_in_range(const CubicSpline& m, double lo, double hi, const std::string& key) {
+  require_non_negative(m, lo, hi, key, "the mass");
+  for (const double th : check_points(m, lo, hi))
+    if (const double v = m(th); v > kMaxTileMass)
+      fail(key, "the mass reaches " + short_number(v * 1e3) + " mN·m/(rad/s²) at θ = " + short_number(th) +
+                    " rad, beyond the renderer's " + short_number(kMaxTileMass * 1e3) +
+                    " mN·m/(rad/s²) (thesis Table 9)");
 }
 
 model::PositionTile position_tile(const json& j, const std::string& key, const SafetyLimits& limits) {
@@ -92,20 +114,153 @@ model::PositionTile position_tile(const json& j, const std::string& key, const S
         fail(key + ".f_pos", "its torque f_pos(θ)·θ reaches " + short_number(tau * 1e3) + " mN·m at θ = " +
                                  short_number(th) + " rad, beyond the device's torque limit of " +
                                  short_number(limits.torque_limit_Nm * 1e3) + " mN·m");
+  if (j.contains("torque")) {
+    tile.torque_of_angle = spline_from(j.at("torque"), key + ".torque");
+    const CubicSpline& g = *tile.torque_of_angle;
+    require_within_torque_limit(g, [&](double th) { return g(th); }, tile.theta_min, tile.theta_max,
+                                key + ".torque", "θ", "rad", limits);
+  }
+  if (j.contains("torque_of_velocity")) {
+    tile.torque_of_velocity = spline_from(j.at("torque_of_velocity"), key + ".torque_of_velocity");
+    const CubicSpline& g = *tile.torque_of_velocity;
+    // Any speed up to the velocity limit can happen (beyond it the
+    // supervisor latches), and the curve goes on straight past its knots.
+    const double v = limits.velocity_limit_rad_s;
+    require_within_torque_limit(g, [&](double w) { return model::evaluate_straight_ends(g, w); }, -v, v,
+                                key + ".torque_of_velocity", "θ̇", "rad/s", limits);
+  }
+  if (j.contains("mass")) {
+    tile.mass = spline_from(j.at("mass"), key + ".mass");
+    require_mass_in_range(*tile.mass, tile.theta_min, tile.theta_max, key + ".mass");
+  }
   return tile;
 }
 
-model::TimeTile time_tile(const json& j, const std::string& key) {
+model::TimeTile time_tile(const json& j, const std::string& key, const SafetyLimits& limits) {
   model::TimeTile tile;
   tile.duration = j.at("duration").get<double>();
   tile.loop = j.value("loop", false);
   read_terms(j, key, 0.0, tile.duration, tile);
+  if (j.contains("torque")) {
+    tile.torque_of_time = spline_from(j.at("torque"), key + ".torque");
+    const CubicSpline& g = *tile.torque_of_time;
+    require_within_torque_limit(g, [&](double t) { return g(t); }, 0.0, tile.duration, key + ".torque", "t", "s",
+                                limits);
+  }
   return tile;
+}
+
+std::string loop_name(const model::LoopDynamics& d) {
+  return d.rate_hz >= 1000.0 ? short_number(d.rate_hz / 1000.0) + " kHz loop" : short_number(d.rate_hz) + " Hz loop";
+}
+
+// The tiles together as the loop sees them, linearised (render_stability.hpp):
+// at every θ of every position tile's span, the stiffness of all torque and
+// f_pos curves acting there and the damping of all f_vel and
+// torque_of_velocity curves (the latter at their least and their greatest
+// slope up to the velocity limit), overlapping tiles added up. Outside the
+// stable region the knob would buzz or ring: refused, naming the curve that
+// contributes most of what is too much, and the mass is summed as well.
+void check_stability(const TileSet& set, const SafetyLimits& limits, const model::LoopStability& loop) {
+  const std::size_t n = set.position.size();
+  std::vector<std::pair<double, double>> slopes(n);
+  for (std::size_t i = 0; i < n; ++i) slopes[i] = set.position[i].velocity_slope_range(limits.velocity_limit_rad_s);
+  const auto key_of = [](std::size_t i) { return "position[" + std::to_string(i) + "]"; };
+  double last_K = std::nan(""), last_B = std::nan("");
+  bool last_ok = true;
+  const auto stable = [&](double K, double B) {
+    if (K != last_K || B != last_B) {  // constant slopes repeat: test once
+      last_K = K, last_B = B;
+      last_ok = loop.renders_stably(K, B);
+    }
+    return last_ok;
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    const model::PositionTile& tile = set.position[i];
+    std::vector<double> at = check_points(CubicSpline{}, tile.theta_min, tile.theta_max);
+    for (const model::PositionTile& other : set.position)  // where the sum changes
+      for (const double edge : {other.theta_min, other.theta_max})
+        if (tile.contains(edge)) at.push_back(edge);
+    for (const auto* c : {&tile.torque_of_angle, &tile.f_pos, &tile.f_vel, &tile.mass})
+      if (*c)
+        for (const double k : (*c)->knots())
+          if (tile.contains(k)) at.push_back(k);
+    for (const double th : at) {
+      double K = 0.0, B = 0.0, B_lo = 0.0, B_hi = 0.0, mass = 0.0;
+      int contributors = 0;
+      for (std::size_t j = 0; j < n; ++j) {
+        const model::PositionTile& t = set.position[j];
+        if (!t.contains(th)) continue;
+        ++contributors;
+        K += t.stiffness_at(th);
+        B += t.damping_at(th);
+        B_lo += slopes[j].first;
+        B_hi += slopes[j].second;
+        mass += t.mass_at(th);
+      }
+      const std::string together = contributors > 1 ? " (the tiles there together)" : "";
+      if (mass > kMaxTileMass) {
+        std::size_t heaviest = i;
+        for (std::size_t j = 0; j < n; ++j)
+          if (set.position[j].mass_at(th) > set.position[heaviest].mass_at(th)) heaviest = j;
+        fail(key_of(heaviest) + ".mass", "the mass reaches " + short_number(mass * 1e3) + " mN·m/(rad/s²) at θ = " +
+                                             short_number(th) + " rad" + together + ", beyond the renderer's " +
+                                             short_number(kMaxTileMass * 1e3) + " mN·m/(rad/s²) (thesis Table 9)");
+      }
+      for (const double Bv : {B + B_hi, B + B_lo}) {
+        if (stable(K, Bv)) continue;
+        const double K_max = loop.max_stiffness(Bv);
+        if (std::isfinite(K_max) && K > K_max) {  // too stiff: blame the stiffest curve there
+          std::size_t j_best = i;
+          double best = 0.0;
+          std::string curve = "torque";
+          for (std::size_t j = 0; j < n; ++j) {
+            const model::PositionTile& t = set.position[j];
+            if (!t.contains(th)) continue;
+            if (t.torque_of_angle && t.torque_of_angle->derivative(th) > best)
+              best = t.torque_of_angle->derivative(th), j_best = j, curve = "torque";
+            if (t.f_pos) {
+              const double k = (*t.f_pos)(th) + t.f_pos->derivative(th) * th;
+              if (k > best) best = k, j_best = j, curve = "f_pos";
+            }
+          }
+          fail(key_of(j_best) + "." + curve,
+               "its stiffness reaches " + short_number(K) + " N·m/rad at θ = " + short_number(th) + " rad" + together +
+                   ", beyond the " + loop_name(loop.dynamics()) + "'s stable " + short_number(K_max) +
+                   " N·m/rad with " + short_number(Bv) + " N·m·s/rad damping there");
+        }
+        // Otherwise the damping: too much for the filtered velocity's lag,
+        // or a down-slope steeper than the grip's own damping.
+        const bool too_high = Bv == B + B_hi && Bv > 0.0;
+        const double edge = too_high ? loop.max_damping(K) : loop.min_damping(K);
+        std::size_t j_best = i;
+        double best = -1.0;
+        std::string curve = "f_vel";
+        for (std::size_t j = 0; j < n; ++j) {
+          const model::PositionTile& t = set.position[j];
+          if (!t.contains(th)) continue;
+          const double fv = t.damping_at(th), gv = too_high ? slopes[j].second : -slopes[j].first;
+          if (t.f_vel && std::abs(fv) > best) best = std::abs(fv), j_best = j, curve = "f_vel";
+          if (t.torque_of_velocity && gv > best) best = gv, j_best = j, curve = "torque_of_velocity";
+        }
+        std::string bound = std::isfinite(edge) ? "the " + loop_name(loop.dynamics()) + "'s stable " +
+                                                      short_number(edge) + " N·m·s/rad"
+                                                : "anything the " + loop_name(loop.dynamics()) + " renders stably";
+        fail(key_of(j_best) + "." + curve,
+             std::string("its damping ") + (too_high ? "reaches " : "falls to ") + short_number(Bv) +
+                 " N·m·s/rad at θ = " + short_number(th) + " rad" + together + ", " +
+                 (too_high ? "beyond " : "below ") + bound + " with " + short_number(K) +
+                 " N·m/rad stiffness there" +
+                 (too_high ? "" : ": a down-slope steeper than the grip's own damping makes the knob ring"));
+      }
+    }
+  }
 }
 
 }  // namespace
 
-std::variant<std::unique_ptr<TileSet>, ParamProblem> tiles_from_json(const json& args, const SafetyLimits& limits) {
+std::variant<std::unique_ptr<TileSet>, ParamProblem> tiles_from_json(const json& args, const SafetyLimits& limits,
+                                                                     const model::LoopDynamics& loop) {
   auto set = std::make_unique<TileSet>();
   try {
     if (args.contains("position")) {
@@ -116,8 +271,9 @@ std::variant<std::unique_ptr<TileSet>, ParamProblem> tiles_from_json(const json&
     if (args.contains("time")) {
       const json& list = args.at("time");
       for (std::size_t i = 0; i < list.size(); ++i)
-        set->time.push_back(time_tile(list[i], "time[" + std::to_string(i) + "]"));
+        set->time.push_back(time_tile(list[i], "time[" + std::to_string(i) + "]", limits));
     }
+    check_stability(*set, limits, model::LoopStability(loop));
   } catch (const Bad& b) {
     return b.problem;
   }

@@ -3,7 +3,8 @@
 // stick band (Eq. 7) and the effect library's renderable terms (a new set
 // fades out the old one, then in, each over half the ramp). Velocity is the front end's rendering filter (the
 // 10th-order Butterworth of §1.2.2 at 500 Hz, "Low Pass 1"), τ_acc goes
-// through the 3-sample box ("Low Pass 2").
+// through the 3-sample box ("Low Pass 2"). Prototyper tiles cross-fade: a
+// new set fades in while the old one fades out, linearly over the ramp.
 // Construction allocates; update() and set_params() never do.
 #pragma once
 
@@ -16,6 +17,7 @@
 #include "knoblab/hapticd/tile_set.hpp"
 #include "knoblab/hapticd/virtual_mass.hpp"
 #include "knoblab/model/filters.hpp"
+#include "knoblab/model/render_stability.hpp"
 
 namespace knoblab::hapticd {
 
@@ -36,14 +38,20 @@ class RenderController {
   void reset();
 
   // Non-realtime: render these tiles on top of the model from the next
-  // cycle on (nullptr: none). False while the previous set is still being
-  // handed over (`tiles` then stays with the caller); retry a cycle later.
+  // cycle on (nullptr: none), cross-fading from the set before over
+  // kParamRampSeconds (no step in torque while playing). False while the
+  // previous set is still being handed over or faded in (`tiles` then stays
+  // with the caller); retry a cycle later.
   bool load_tiles(std::unique_ptr<TileSet>&& tiles) { return tiles_.publish(std::move(tiles)); }
   // Realtime, every cycle whatever the mode: takes a set offered by
   // load_tiles, so tiles load (and their time starts) in any mode.
   void take_tiles();
 
   void update(const capture::SensorReading& in, capture::DaqOutputs& out, capture::Sample& s);
+
+  // The linearised loop this renderer runs (rate, render velocity filter),
+  // held by the default grip: what load_tiles' stability check tests.
+  static model::LoopDynamics loop_dynamics(double rate_hz);
 
  private:
   RenderConfig cfg_;
@@ -61,6 +69,9 @@ class RenderController {
   Handoff<TileSet> tiles_;
   const TileSet* active_tiles_ = nullptr;
   double tiles_start_t_ = 0.0;
+  const TileSet* previous_tiles_ = nullptr;  // fading out while tiles_ holds it
+  double previous_start_t_ = 0.0;
+  ParamRamp tiles_fade_{1.0};  // weight of active_tiles_; the previous set has 1 − it
   double prev_omega_ = 0.0;
   model::BoxFilter3 alpha_box_;  // acceleration for f_acc tiles
 };
