@@ -17,6 +17,7 @@
 #include <string>
 
 #include "daemon_link.hpp"
+#include "design_session.hpp"
 #include "event_loop.hpp"
 #include "hapticd_process.hpp"
 #include "job_runner.hpp"
@@ -136,24 +137,30 @@ class Screen {
 };
 
 // The kiosk as knoblab-ui builds it, against `daemon`, offscreen at `panel`,
-// opened at `start`, offering the study protocols in `studies`; what it put
-// in the message bar kept in `messages`.
+// opened at `start`, offering the study protocols in `studies` and keeping
+// the prototyper's designs in `designs_dir` (default: the daemon's scratch
+// directory); what it put in the message bar kept in `messages`.
 struct Kiosk {
-  Kiosk(const test::Hapticd& daemon, const QString& start, QSize panel, const QString& studies = {})
+  Kiosk(const test::Hapticd& daemon, const QString& start, QSize panel, const QString& studies = {},
+        const QString& designs_dir = {})
       : link(options(daemon)),
         knobs(QString::fromStdString(daemon.db())),
         jobs(KNOBLAB_CLI_PATH, QString::fromStdString(daemon.db())),
         study({.db = QString::fromStdString(daemon.db()), .socket = QString::fromStdString(daemon.socket()),
-               .studiesDir = studies, .simulate = false, .pause_at = {}}) {
+               .studiesDir = studies, .simulate = false, .pause_at = {}}),
+        designs(&link, {.designsDir = designs_dir.isEmpty() ? QString::fromStdString(daemon.dir() + "/designs")
+                                                            : designs_dir}) {
     QObject::connect(&link, &DaemonLink::telemetryNameChanged, &feed, [this] { feed.setRing(link.telemetryName()); });
     QObject::connect(&link, &DaemonLink::message, [this](const QString& t, const QString&) { messages << t; });
     QObject::connect(&study, qOverload<const QString&, const QString&>(&StudySession::message),
                      [this](const QString& t, const QString&) { messages << t; });
+    QObject::connect(&designs, &DesignSession::message, [this](const QString& t, const QString&) { messages << t; });
     engine.setInitialProperties({{"link", QVariant::fromValue(&link)},
                                  {"knobs", QVariant::fromValue(&knobs)},
                                  {"jobs", QVariant::fromValue(&jobs)},
                                  {"feed", QVariant::fromValue(&feed)},
                                  {"study", QVariant::fromValue(&study)},
+                                 {"designs", QVariant::fromValue(&designs)},
                                  {"startScreen", start},
                                  {"width", panel.width()},
                                  {"height", panel.height()}});
@@ -172,6 +179,7 @@ struct Kiosk {
   JobRunner jobs;
   TelemetryFeed feed;
   StudySession study;
+  DesignSession designs;
   QStringList messages;
   QQmlApplicationEngine engine;
   QQuickWindow* window = nullptr;  // null: Main did not load

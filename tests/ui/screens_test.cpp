@@ -10,7 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "fan_knob_steps.hpp"
 #include "hapticd_process.hpp"
+#include "knoblab/design/design_json.hpp"
 #include "process.hpp"
 
 namespace knoblab::ui {
@@ -174,6 +176,40 @@ INSTANTIATE_TEST_SUITE_P(AtPanelSizes, StudyScreens,
                            for (char& c : size)
                              if (c == 'x') c = '_';
                            return std::string(std::get<0>(p.param).name) + "_" + size;
+                         });
+
+// The prototyper with the thesis' fan knob open (the design
+// examples/designs/fan-knob.json holds; tests/design keeps them equal): its
+// editor (the strong damping, with the JND band), palette and pane.
+class PrototyperScreens : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(PrototyperScreens, ShowTheFanKnobsEditorPaletteAndPaneWhole) {
+  const std::string size = GetParam();
+  Hapticd daemon;
+  ASSERT_TRUE(daemon.ready()) << daemon.log();
+  const std::filesystem::path designs = std::filesystem::path(daemon.dir()) / "designs";
+  std::filesystem::create_directories(designs);
+  design::write_design(designs / "fan-knob.json", design::testing::fan_knob());
+  std::filesystem::create_directories(KNOBLAB_UI_SCREENS_DIR);
+  const std::filesystem::path png = std::filesystem::path(KNOBLAB_UI_SCREENS_DIR) / ("prototyper-" + size + ".png");
+  std::filesystem::remove(png);
+  const Shot s = screenshot(daemon.socket(), daemon.db(), "prototyper", size, png, "20",
+                            {"--designs", designs.string(), "--design", "fan-knob.json"});
+  EXPECT_EQ(s.exit_code, 0) << s.err;
+  ASSERT_FALSE(s.image.isNull()) << png;
+  EXPECT_EQ(std::to_string(s.image.width()) + "x" + std::to_string(s.image.height()), size);
+  EXPECT_EQ(named(s.out, "designFile"), "fan-knob.json") << s.out;
+  EXPECT_EQ(named(s.out, "editorAxes"), "torque (mN·m) over velocity (rad/s)") << s.out;
+  EXPECT_EQ(named(s.out, "editorLegend"), "▒ ±20 % JND  ▒ limit ±180 mN·m") << s.out;
+  EXPECT_EQ(named(s.out, "message"), "") << s.out;  // opened without complaint
+}
+
+INSTANTIATE_TEST_SUITE_P(AtPanelSizes, PrototyperScreens, ::testing::Values("1024x600", "1280x800"),
+                         [](const auto& p) {
+                           std::string name = p.param;
+                           for (char& c : name)
+                             if (c == 'x') c = '_';
+                           return name;
                          });
 
 TEST(Screens, WithoutHapticdTheScreensStillRenderAndSayTheDaemonIsMissing) {

@@ -52,6 +52,12 @@ Item {
                 onActivated: home.open("study")
             }
             BigButton {
+                objectName: "prototyperButton"
+                label: "Prototyper"
+                detail: "design how a knob feels: waveforms, tiles, play them"
+                onActivated: home.open("prototyper")
+            }
+            BigButton {
                 objectName: "systemButton"
                 label: "System"
                 detail: "loop timing, faults, calibration"

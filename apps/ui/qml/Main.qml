@@ -12,6 +12,7 @@ ApplicationWindow {
     required property JobRunner jobs
     required property TelemetryFeed feed
     required property StudySession study
+    required property DesignSession designs
     // The screen shown first (knoblab-ui --screen): home, or one above it.
     required property string startScreen
 
@@ -29,7 +30,8 @@ ApplicationWindow {
             review: reviewScreen,
             compare: compareScreen,
             study: studyScreen,
-            participant: participantScreen
+            participant: participantScreen,
+            prototyper: prototyperScreen
         })
     // The participant's view takes the whole screen: no status strip, no message bar.
     readonly property bool participantView: stack.currentItem !== null && stack.currentItem.objectName === "participantScreen"
@@ -119,6 +121,13 @@ ApplicationWindow {
         }
     }
     Component {
+        id: prototyperScreen
+        PrototyperScreen {
+            session: window.designs
+            keyboardUp: keyboard.active
+        }
+    }
+    Component {
         id: reviewScreen
         ReviewScreen {
             knobs: window.knobs
@@ -177,6 +186,12 @@ ApplicationWindow {
     }
     Connections {
         target: window.study
+        function onMessage(text: string, level: string) {
+            bar.show(text, level);
+        }
+    }
+    Connections {
+        target: window.designs
         function onMessage(text: string, level: string) {
             bar.show(text, level);
         }

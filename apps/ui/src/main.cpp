@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "daemon_link.hpp"
+#include "design_session.hpp"
 #include "job_runner.hpp"
 #include "knob_library.hpp"
 #include "study_session.hpp"
@@ -120,6 +121,7 @@ int main(int argc, char** argv) {
                                    .studiesDir = QString::fromStdString(o.studies),
                                    .simulate = o.study_simulate,
                                    .pause_at = QString::fromStdString(o.study_pause_at)});
+  knoblab::ui::DesignSession designs(&link, {.designsDir = QString::fromStdString(o.designs)});
   QObject::connect(&link, &knoblab::ui::DaemonLink::telemetryNameChanged, &feed,
                    [&] { feed.setRing(link.telemetryName()); });
 
@@ -129,6 +131,7 @@ int main(int argc, char** argv) {
                                {QStringLiteral("jobs"), QVariant::fromValue(&jobs)},
                                {QStringLiteral("feed"), QVariant::fromValue(&feed)},
                                {QStringLiteral("study"), QVariant::fromValue(&study)},
+                               {QStringLiteral("designs"), QVariant::fromValue(&designs)},
                                {QStringLiteral("startScreen"), QString::fromStdString(o.screen)},
                                {QStringLiteral("width"), o.width},
                                {QStringLiteral("height"), o.height}});
@@ -138,6 +141,8 @@ int main(int argc, char** argv) {
   if (engine.rootObjects().isEmpty()) return 2;
   auto* window = qobject_cast<QQuickWindow*>(engine.rootObjects().first());
   if (!window) return 2;
+  // Opened before the first frame, so a screenshot shows it (or why not, in the message bar).
+  if (!o.design.empty()) designs.open(QString::fromStdString(o.design), false);
   if (!o.study_protocol.empty())
     study.start(QString::fromStdString(o.study_protocol), QString::fromStdString(o.study_participant));
   if (!o.screenshot.empty()) return screenshot(*window, link, library, jobs, study, o);

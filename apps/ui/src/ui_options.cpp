@@ -9,7 +9,7 @@ namespace knoblab::ui {
 std::string ui_usage() {
   return "usage: knoblab-ui [--socket PATH] [--db FILE] [--knoblab PATH] [--no-supervise] [--fullscreen]\n"
          "                  [--size WxH] [--screen NAME] [--screenshot OUT.png [--wait SECONDS]]\n"
-         "                  [--status-file FILE] [--studies DIR]\n"
+         "                  [--status-file FILE] [--studies DIR] [--designs DIR] [--design FILE]\n"
          "                  [--study PROTOCOL.json [--participant CODE] [--simulate [--pause-at WHAT]]]\n"
          "\n"
          "The knoblab touchscreen front-end. It talks to hapticd through its control socket\n"
@@ -19,7 +19,9 @@ std::string ui_usage() {
          "knoblab command (--knoblab, default: knoblab on the PATH), which store their results\n"
          "there. Screens: home, system, capture, library, review (the newest capture),\n"
          "compare (the two newest), study (the experimenter's view of a user study),\n"
-         "participant (the participant's view).\n"
+         "participant (the participant's view), prototyper (the Haptic Icon Prototyper).\n"
+         "--designs names the folder of prototyper designs (default /var/lib/knoblab/designs);\n"
+         "--design opens one (a path, or a file name in that folder).\n"
          "--studies names the folder of study protocols offered (default: the installed examples).\n"
          "--study starts CODE's session of the protocol (default P01; it resumes when it exists);\n"
          "--simulate runs it in simulated time with the simulated participant (no hapticd), pausing\n"
@@ -51,6 +53,8 @@ UiOptions parse_ui_options(const std::vector<std::string>& args) {
     else if (a == "--participant") o.study_participant = need(i);
     else if (a == "--simulate") o.study_simulate = true;
     else if (a == "--pause-at") o.study_pause_at = need(i);
+    else if (a == "--designs") o.designs = need(i);
+    else if (a == "--design") o.design = need(i);
     else if (a == "--help" || a == "-h") o.help = true;
     else if (a == "--version") o.version = true;
     else if (a == "--size") {

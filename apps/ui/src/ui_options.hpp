@@ -31,6 +31,10 @@ struct UiOptions {
   // screenshot tests show a real session.
   std::string study_protocol, study_participant = "P01", study_pause_at;
   bool study_simulate = false;
+  // The prototyper's designs (thesis ch. 5) live here, beside the knob
+  // library; --design opens one at start.
+  std::string designs = "/var/lib/knoblab/designs";
+  std::string design;
   bool help = false, version = false;
 };
 
