@@ -18,7 +18,7 @@ const std::vector<Command>& commands();
 
 extern const CommandSpec kSimulateSpec, kImportSpec, kExportSpec, kInspectSpec, kDemoSpec,
     kListSpec, kConvertSpec, kFitSpec, kFitsSpec, kFitExportSpec, kDiscrepancySpec, kCtlSpec, kCompareSpec,
-    kResultsSpec, kStudySpec;
+    kResultsSpec, kStudySpec, kDesignSpec;
 int run_simulate(const Args&);
 int run_import(const Args&);
 int run_export(const Args&);
@@ -34,6 +34,7 @@ int run_discrepancy(const Args&);
 int run_ctl(const Args&);
 int run_compare(const Args&);
 int run_study(const Args&);
+int run_design(const Args&);
 
 // hapticd's control socket: --socket, else $KNOBLAB_SOCKET, else /run/knoblab/hapticd.sock.
 std::string hapticd_socket(const Args& args);

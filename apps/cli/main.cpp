@@ -17,7 +17,7 @@ const std::vector<Command>& commands() {
       {kListSpec, run_list},         {kConvertSpec, run_convert}, {kInspectSpec, run_inspect},
       {kFitSpec, run_fit},           {kFitsSpec, run_fits},       {kFitExportSpec, run_fit_export},
       {kDiscrepancySpec, run_discrepancy}, {kCompareSpec, run_compare}, {kResultsSpec, run_results},
-      {kDemoSpec, run_demo}, {kCtlSpec, run_ctl}, {kStudySpec, run_study},
+      {kDemoSpec, run_demo}, {kCtlSpec, run_ctl}, {kStudySpec, run_study}, {kDesignSpec, run_design},
   };
   return all;
 }

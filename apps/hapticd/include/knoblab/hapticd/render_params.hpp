@@ -21,10 +21,14 @@ struct RenderParams {
   // Beyond Eq. 14: what discrepancy discovery found (load_model's "effects").
   model::EffectSet<double> effects;
   // Virtual-mass coupling (§3.3). The thesis prints K_vm = 12 000 and
-  // B_vm = 88 "Nm/rad"; only mN·m units make a stable, felt-but-stiff
-  // coupling with its masses, so 12 N·m/rad and 0.088 N·m·s/rad.
+  // B_vm = 88 "Nm/rad"; read as mN·m that is 12 N·m/rad and 0.088 N·m·s/rad.
+  // The coupling's damper acts on the render velocity like any damping, and
+  // 0.088 is five times what this loop renders stably (about 0.017 N·m·s/rad
+  // at 10 kHz with the 500 Hz velocity filter, model/render_stability.hpp):
+  // a mass rendered with it rang the simulated knob at the torque limit (so
+  // did 0.01); 0.004 N·m·s/rad settles, with the same K_vm.
   double K_vm = 12.0;
-  double B_vm = 0.088;
+  double B_vm = 0.004;
 };
 
 // Why something cannot be rendered: the offending argument's key (as the
