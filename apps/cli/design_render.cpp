@@ -95,7 +95,7 @@ DesignRenderResult render_design(const DesignRenderRequest& r) {
   c.has_command = true;
 
   hand.send({0.0, 0.0, r.grip_stiffness, r.grip_damping});
-  double leg_start = 0.0, from = 0.0;
+  double leg_start = 0.0;
   std::size_t leg = 0;
   bool leg_sent = false;
   for (long i = 0; i < cycles; ++i) {
@@ -104,7 +104,6 @@ DesignRenderResult render_design(const DesignRenderRequest& r) {
       const Leg& l = kSweep[leg];
       const double to = l.to < 0 ? out.range_from : l.to > 0 ? out.range_to : 0.0;
       hand.send({to, l.share * r.seconds, r.grip_stiffness, r.grip_damping});
-      from = to;
       leg_sent = true;
     }
     if (leg < std::size(kSweep) && t >= leg_start + kSweep[leg].share * r.seconds) {
@@ -130,7 +129,6 @@ DesignRenderResult render_design(const DesignRenderRequest& r) {
     c.command.push_back(rec.sample.command);
     c.flags.push_back(rec.sample.flags);
   }
-  (void)from;
   c.metadata = {{"source", "knoblab design render"},
                 {"knoblab_version", kVersion},
                 {"design", r.design.name},
