@@ -200,7 +200,7 @@ TEST_P(PrototyperScreens, ShowTheFanKnobsEditorPaletteAndPaneWhole) {
   EXPECT_EQ(std::to_string(s.image.width()) + "x" + std::to_string(s.image.height()), size);
   EXPECT_EQ(named(s.out, "designFile"), "fan-knob.json") << s.out;
   EXPECT_EQ(named(s.out, "editorAxes"), "torque (mN·m) over velocity (rad/s)") << s.out;
-  EXPECT_EQ(named(s.out, "editorLegend"), "▒ ±20 % JND  ▒ limit ±180 mN·m") << s.out;
+  EXPECT_EQ(named(s.out, "editorLegend"), "red: unstable  ▒ ±20 % JND  ▒ limit ±180 mN·m") << s.out;
   EXPECT_EQ(named(s.out, "message"), "") << s.out;  // opened without complaint
 }
 

@@ -38,6 +38,14 @@ Rectangle {
     readonly property real jnd: 0.2
     readonly property bool showsJnd: channel === "velocity" || channel === "acceleration"
     readonly property bool showsLimit: channel !== "acceleration"
+    // The loop's stability bound (render_stability.hpp): a damping line
+    // steeper than ±maxDamping, or a torque rising over θ faster than
+    // maxStiffness, is refused by hapticd.
+    readonly property real maxDamping: session.maxDamping
+    readonly property real maxStiffness: session.maxStiffness
+    readonly property bool showsStability: (channel === "velocity" && isFinite(maxDamping))
+                                           || (channel === "position" && isFinite(maxStiffness))
+    onMaxDampingChanged: canvas.requestPaint()
     // The selection dragged out by its chip: to the screen, which drops it.
     signal selectionDragged(point scenePosition, bool done)
 
@@ -240,18 +248,6 @@ Rectangle {
         color: Theme.muted
         font.pixelSize: Theme.fontSmall
     }
-    Text {
-        id: legend
-        objectName: "editorLegend"
-        anchors.right: parent.right
-        anchors.rightMargin: Theme.gap / 2
-        anchors.top: parent.top
-        anchors.topMargin: Theme.gap / 4
-        text: (editor.showsJnd ? "▒ ±20 % JND  " : "") + (editor.showsLimit ? "▒ limit ±" + D.number(editor.torqueLimit * 1000, 3) + " mN·m" : "")
-        color: Theme.muted
-        font.pixelSize: Theme.fontSmall
-    }
-
     Item {
         id: plot
         objectName: "editorPlot"
@@ -337,6 +333,17 @@ Rectangle {
                     }
                     ctx.stroke();
                 }
+                // The stability bound: the steepest damping line the loop renders stably.
+                if (editor.showsStability && editor.channel === "velocity") {
+                    ctx.strokeStyle = Theme.bad;
+                    ctx.lineWidth = 1.5;
+                    for (const sign of [1, -1]) {
+                        ctx.beginPath();
+                        ctx.moveTo(editor.px(editor.x0), editor.py(sign * editor.maxDamping * editor.x0));
+                        ctx.lineTo(editor.px(editor.x1), editor.py(sign * editor.maxDamping * editor.x1));
+                        ctx.stroke();
+                    }
+                }
                 ctx.strokeStyle = Theme.accent;
                 ctx.lineWidth = 2;
                 ctx.beginPath();
@@ -347,6 +354,19 @@ Rectangle {
                         ctx.lineTo(editor.px(c[i].x), editor.py(c[i].y));
                 }
                 ctx.stroke();
+                // Over θ: where the torque rises faster than the loop can render stiffly.
+                if (editor.showsStability && editor.channel === "position") {
+                    ctx.strokeStyle = Theme.bad;
+                    ctx.lineWidth = 4;
+                    for (let i = 0; i + 1 < c.length; ++i) {
+                        if ((c[i + 1].y - c[i].y) / (c[i + 1].x - c[i].x) <= editor.maxStiffness)
+                            continue;
+                        ctx.beginPath();
+                        ctx.moveTo(editor.px(c[i].x), editor.py(c[i].y));
+                        ctx.lineTo(editor.px(c[i + 1].x), editor.py(c[i + 1].y));
+                        ctx.stroke();
+                    }
+                }
             }
         }
 
@@ -433,6 +453,28 @@ Rectangle {
                     editor.selectionDragged(chipDrag.centroid.scenePosition, true)
                 onCentroidChanged: if (chipDrag.active)
                     editor.selectionDragged(chipDrag.centroid.scenePosition, false)
+            }
+        }
+
+        // What the overlays mean, in the plot's corner (the axes' title
+        // takes the line above it).
+        Rectangle {
+            anchors.right: parent.right
+            anchors.top: parent.top
+            anchors.margins: 2
+            width: legend.implicitWidth + Theme.gap / 2
+            height: legend.implicitHeight + 2
+            visible: legend.text !== ""
+            radius: 4
+            color: Qt.rgba(0.08, 0.09, 0.11, 0.8)
+            Text {
+                id: legend
+                objectName: "editorLegend"
+                anchors.centerIn: parent
+                text: (editor.showsStability ? "red: unstable  " : "") + (editor.showsJnd ? "▒ ±20 % JND  " : "")
+                      + (editor.showsLimit ? "▒ limit ±" + D.number(editor.torqueLimit * 1000, 3) + " mN·m" : "")
+                color: Theme.muted
+                font.pixelSize: Theme.fontSmall
             }
         }
 

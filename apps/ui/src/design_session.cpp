@@ -15,6 +15,7 @@
 #include "knoblab/design/templates.hpp"
 #include "knoblab/jsonread/json_reader.hpp"
 #include "pane_snap.hpp"
+#include "stability_bound.hpp"
 
 namespace knoblab::ui {
 
@@ -341,8 +342,20 @@ void DesignSession::stop() { player_.stop(); }
 void DesignSession::read_limits() {
   const QVariant limit = link_->state().value(QStringLiteral("torque_limit_Nm"));
   const double value = limit.isValid() && limit.toDouble() > 0.0 ? limit.toDouble() : 0.18;
-  if (value == torque_limit_) return;
+  const double rate = link_->state().value(QStringLiteral("rate_hz")).toDouble();
+  if (value == torque_limit_ && rate == rate_hz_) return;
   torque_limit_ = value;
+  if (rate != rate_hz_ && rate > 0.0) {
+    // Once per rate: the bound takes a few bisections of the loop's roots.
+    try {
+      const StabilityBound b = stability_bound(rate);
+      max_damping_ = b.max_damping;
+      max_stiffness_ = b.max_stiffness;
+    } catch (const std::exception&) {
+      max_damping_ = max_stiffness_ = std::numeric_limits<double>::quiet_NaN();
+    }
+  }
+  rate_hz_ = rate;
   emit limitsChanged();
 }
 

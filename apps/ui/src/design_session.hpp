@@ -16,6 +16,7 @@
 #include <QtQml/qqmlregistration.h>
 
 #include <filesystem>
+#include <limits>
 
 #include "design_player.hpp"
 #include "knoblab/design/history.hpp"
@@ -54,6 +55,11 @@ class DesignSession : public QObject {
   Q_PROPERTY(bool playing READ playing NOTIFY playingChanged)
   // hapticd's torque limit (N·m): get_state's torque_limit_Nm when it says, else the default 0.18.
   Q_PROPERTY(double torqueLimit READ torqueLimit NOTIFY limitsChanged)
+  // The loop's stability bound at hapticd's rate (stability_bound.hpp): the
+  // most damping (N·m·s/rad) and stiffness (N·m/rad) it renders stably; NaN
+  // until hapticd has said its rate.
+  Q_PROPERTY(double maxDamping READ maxDamping NOTIFY limitsChanged)
+  Q_PROPERTY(double maxStiffness READ maxStiffness NOTIFY limitsChanged)
 
  public:
   struct Options {
@@ -80,6 +86,8 @@ class DesignSession : public QObject {
   int revision() const { return revision_; }
   bool playing() const { return player_.playing(); }
   double torqueLimit() const { return torque_limit_; }
+  double maxDamping() const { return max_damping_; }
+  double maxStiffness() const { return max_stiffness_; }
 
   // The editor's curve as played, sampled over [from, to] ([{x, y}]).
   Q_INVOKABLE QVariantList editorCurve(double from, double to, int samples) const;
@@ -164,6 +172,9 @@ class DesignSession : public QObject {
   QStringList files_;
   int revision_ = 0;
   double torque_limit_ = 0.18;
+  double rate_hz_ = 0.0;
+  double max_damping_ = std::numeric_limits<double>::quiet_NaN();
+  double max_stiffness_ = std::numeric_limits<double>::quiet_NaN();
 };
 
 }  // namespace knoblab::ui
