@@ -35,6 +35,21 @@ TEST(DesignCli, TheFanKnobChecksAsADesignHapticdWouldPlay) {
   EXPECT_THAT(r.out, HasSubstr("hapticd would play it."));
 }
 
+TEST(DesignCli, ATimeLineOfTilesThatLoopsChecksAsADesignHapticdWouldPlay) {
+  ScratchDir dir;
+  design::Design d = design::read_design(kFanKnob);
+  const design::Tile pulse{"pulse", {{{0.0, 0.0}, {0.05, 0.02}, {0.1, 0.0}}, false}, design::Channel::Time};
+  design::place_tile(d, design::Channel::Time, 0, pulse, 0.0, 0.1);
+  design::place_tile(d, design::Channel::Time, 0, pulse, 0.5, 0.6);
+  design::set_time_loop(d, true);
+  const auto file = (dir / "pulses.json").string();
+  design::write_design(file, d);
+  const RunResult r = run_knoblab({"design", "check", file});
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_THAT(r.out, HasSubstr("time         1 line(s), 2 tile(s)"));
+  EXPECT_THAT(r.out, HasSubstr("hapticd would play it."));
+}
+
 TEST(DesignCli, AMalformedDesignIsRefusedNamingTheFileAndTheKey) {
   ScratchDir dir;
   nlohmann::json j = nlohmann::json::parse(read_file(kFanKnob));

@@ -53,6 +53,20 @@ TEST(TilesJson, ADesignedSetParsesIntoPositionAndTimeTilesInOrder) {
   EXPECT_NEAR((*set.position[0].f_vel)(0.0), 0.002, 1e-12);
 }
 
+TEST(TilesJson, ATimeTileStartsWhereItIsPlacedAndALoopCannotRepeatBeforeTheTileHasEnded) {
+  const json torque = {{"x", {0.0, 0.25}}, {"y", {0.0, 0.01}}};
+  auto r = tiles_from_json({{"time", {{{"start", 0.5}, {"duration", 0.25}, {"loop", true}, {"period", 1.0}, {"torque", torque}}}}},
+                           kLimits);
+  ASSERT_TRUE(std::holds_alternative<std::unique_ptr<TileSet>>(r)) << std::get<ParamProblem>(r).message;
+  const model::TimeTile& t = std::get<std::unique_ptr<TileSet>>(r)->time.at(0);
+  EXPECT_EQ(t.start, 0.5);
+  EXPECT_EQ(t.period, 1.0);
+  const auto p = problem_of({{"time", {{{"start", 0.5}, {"duration", 0.25}, {"loop", true}, {"period", 0.6}, {"torque", torque}}}}});
+  ASSERT_TRUE(p);
+  EXPECT_EQ(p->key, "time[0].period");
+  EXPECT_EQ(p->message, "time[0].period: must be at least start + duration (0.75 s): a tile cannot repeat before it has ended");
+}
+
 TEST(TilesJson, KnotsThatDoNotIncreaseAreRefusedNamingTheCurve) {
   json tile = damping_tile({0.001, 0.001, 0.001, 0.001, 0.001});
   tile["f_vel"]["x"] = {-1.0, 0.0, 0.0, 0.5, 1.0};

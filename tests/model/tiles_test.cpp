@@ -81,6 +81,23 @@ TEST(TimeTile, LoopsWhenAsked) {
   EXPECT_FALSE(tile.local_time(0.0).has_value());
 }
 
+TEST(TimeTile, PlacedOnATimeLineItStartsLaterRunsOnItsOwnClockAndRepeatsEveryPeriod) {
+  TimeTile tile;
+  tile.start = 0.5;
+  tile.duration = 0.25;
+  tile.torque_of_time = line(0.0, 0.0, 0.25, 0.01);  // its own clock: 0 at its start
+  const Kinematics<double> k{0.0, 0.0, 0.0};
+  EXPECT_EQ(tile.torque(0.49, k), 0.0);
+  EXPECT_NEAR(tile.torque(0.6, k), 0.004, 1e-12);
+  EXPECT_EQ(tile.torque(0.8, k), 0.0);
+  tile.loop = true;
+  tile.period = 1.0;  // the line is a second long; this tile is its second half's first quarter
+  EXPECT_NEAR(tile.torque(2.6, k), 0.004, 1e-12);
+  EXPECT_EQ(tile.torque(2.3, k), 0.0);
+  tile.period = 0.0;  // alone: it repeats as soon as it ends
+  EXPECT_NEAR(*tile.local_time(0.75 + 0.6), 0.1, 1e-12);
+}
+
 TEST(Tiles, TotalTorqueSumsTiles) {
   std::vector<PositionTile> pos(2);
   pos[0].theta_min = 0.0;

@@ -250,8 +250,10 @@ constexpr ObjectSchema kPositionTile{kPositionTileArgs, kPositionTileGroups};
 constexpr std::array<std::string_view, 4> kTimeTileTerms = {"f_pos", "f_vel", "f_acc", "torque"};
 constexpr std::array kTimeTileGroups = {GroupRule{GroupRule::Kind::at_least_one, kTimeTileTerms}};
 constexpr std::array kTimeTileArgs = {
-    number("duration", kRequired, 0.001, 3600, "s", "the tile acts for this long after loading"),
-    boolean("loop", kOptional, "repeat every duration (default false: once)"),
+    number("start", kOptional, 0, 3600, "s", "the tile acts from this long after loading (default 0); its curves run from 0 then"),
+    number("duration", kRequired, 0.001, 3600, "s", "the tile acts for this long from its start"),
+    boolean("loop", kOptional, "repeat every period (default false: once)"),
+    number("period", kOptional, 0.001, 7200, "s", "with loop: repeat this often, at least start + duration (the default)"),
     object("f_pos", kOptional, &kSpline, "stiffness over t: τ += f_pos(t)·θ"),
     object("f_vel", kOptional, &kSpline, "damping over t: τ += f_vel(t)·θ̇"),
     object("f_acc", kOptional, &kSpline, "mass over t: τ += f_acc(t)·θ̈"),

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -138,8 +139,13 @@ model::PositionTile position_tile(const json& j, const std::string& key, const S
 
 model::TimeTile time_tile(const json& j, const std::string& key, const SafetyLimits& limits) {
   model::TimeTile tile;
+  tile.start = j.value("start", 0.0);
   tile.duration = j.at("duration").get<double>();
   tile.loop = j.value("loop", false);
+  tile.period = j.value("period", 0.0);
+  if (tile.period > 0.0 && tile.period < tile.start + tile.duration)
+    fail(key + ".period", "must be at least start + duration (" + short_number(tile.start + tile.duration) +
+                              " s): a tile cannot repeat before it has ended");
   read_terms(j, key, 0.0, tile.duration, tile);
   if (j.contains("torque")) {
     tile.torque_of_time = spline_from(j.at("torque"), key + ".torque");
@@ -166,14 +172,37 @@ void check_stability(const TileSet& set, const SafetyLimits& limits, const model
   std::vector<std::pair<double, double>> slopes(n);
   for (std::size_t i = 0; i < n; ++i) slopes[i] = set.position[i].velocity_slope_range(limits.velocity_limit_rad_s);
   const auto key_of = [](std::size_t i) { return "position[" + std::to_string(i) + "]"; };
-  double last_K = std::nan(""), last_B = std::nan("");
-  bool last_ok = true;
-  const auto stable = [&](double K, double B) {
-    if (K != last_K || B != last_B) {  // constant slopes repeat: test once
-      last_K = K, last_B = B;
-      last_ok = loop.renders_stably(K, B);
+  // One eigenvalue problem per (K, B) took 0.3–0.7 s for a curved tile and
+  // seconds for a design, longer than a client waits for its reply. Along a
+  // tile K changes at every point while B takes few values (damping tiles are
+  // lines), so each B's stable stiffnesses are found once, as an interval,
+  // by bisection; points inside it with margin need no test of their own.
+  struct StiffnessInterval {
+    double lo, hi;  // stable for lo ≤ K ≤ hi; empty (lo > hi) when B alone is not
+  };
+  std::map<double, StiffnessInterval> by_damping;
+  const auto interval_for = [&](double B) -> const StiffnessInterval& {
+    if (auto it = by_damping.find(B); it != by_damping.end()) return it->second;
+    StiffnessInterval in{1.0, 0.0};
+    if (loop.renders_stably(0.0, B)) {
+      in.hi = loop.max_stiffness(B);
+      double bad = -1e4, good = 0.0;  // the falling side of a detent: how steep a fall renders
+      if (loop.renders_stably(bad, B)) good = bad;
+      for (int k = 0; k < 60 && good != bad && bad - good < -1e-9 * std::abs(bad); ++k) {
+        const double mid = 0.5 * (good + bad);
+        (loop.renders_stably(mid, B) ? good : bad) = mid;
+      }
+      in.lo = good;
     }
-    return last_ok;
+    return by_damping.emplace(B, in).first->second;
+  };
+  const auto stable = [&](double K, double B) {
+    const StiffnessInterval& in = interval_for(B);
+    if (!(in.lo <= in.hi)) return false;
+    const double margin = 1e-6 * std::max(1.0, std::abs(in.hi) + std::abs(in.lo));
+    if (K >= in.lo + margin && K <= in.hi - margin) return true;
+    if (K < in.lo - margin || K > in.hi + margin) return false;
+    return loop.renders_stably(K, B);  // at an end of the interval: test it
   };
   for (std::size_t i = 0; i < n; ++i) {
     const model::PositionTile& tile = set.position[i];

@@ -81,9 +81,13 @@ std::pair<double, double> PositionTile::velocity_slope_range(double velocity_lim
 
 std::optional<double> TimeTile::local_time(double t) const noexcept {
   if (!(duration > 0.0) || t < 0.0) return std::nullopt;
-  if (t <= duration) return t;
-  if (!loop) return std::nullopt;
-  return std::fmod(t, duration);
+  const double end = start + duration;
+  if (loop && t > end) {
+    const double every = period > 0.0 ? period : end;
+    t = std::fmod(t, every);
+  }
+  if (t < start || t > end) return std::nullopt;
+  return t - start;
 }
 
 double TimeTile::torque(double t, const Kinematics<double>& k) const noexcept {

@@ -58,8 +58,13 @@ struct PositionTile {
 struct TimeTile {
   std::optional<CubicSpline> f_pos, f_vel, f_acc;  // functions of t (s)
   std::optional<CubicSpline> torque_of_time;       // N·m over t (s); load_tiles' "torque"
-  double duration = 0.0;  // s; the tile is active for 0 <= t <= duration
-  bool loop = false;      // repeat every `duration` seconds from t = 0 on
+  // Active for start <= t <= start + duration; its curves run on the
+  // tile's own clock, t − start. A prototyper's time line places its tiles
+  // one after another with `start`.
+  double start = 0.0;     // s
+  double duration = 0.0;  // s
+  bool loop = false;      // repeat every `period` seconds from t = 0 on
+  double period = 0.0;    // s; 0: start + duration (the tile alone repeats)
 
   // Time inside the tile for t seconds since the tile started, or nothing
   // when the tile is not active.
