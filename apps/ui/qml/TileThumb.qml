@@ -28,7 +28,7 @@ Rectangle {
         anchors.margins: 4
         text: thumb.name
         color: Theme.text
-        wrapMode: Text.Wrap
+        wrapMode: Text.WordWrap  // break between words only; Fit shrinks a long word instead
         horizontalAlignment: Text.AlignHCenter
         verticalAlignment: Text.AlignVCenter
         // Long names shrink to fit the tile rather than being cut.
