@@ -22,42 +22,12 @@ const std::vector<std::string_view>& channel_names() {
   return names;
 }
 
-json waveform_json(const Waveform& w) {
-  json x = json::array(), y = json::array();
-  for (const Point& p : w.points) {
-    x.push_back(p.x);
-    y.push_back(p.y);
-  }
-  json j{{"x", x}, {"y", y}};
-  if (w.periodic) j["periodic"] = true;
-  return j;
-}
-
 json tile_json(const Tile& t) {
   return {{"name", t.name}, {"drawn_for", channel_name(t.drawn_for)}, {"waveform", waveform_json(t.waveform)}};
 }
 
 Channel read_channel(const json& v, const std::string& path) {
   return static_cast<Channel>(jsonread::as_choice(v, path, channel_names()));
-}
-
-Waveform read_waveform(const json& v, const std::string& path) {
-  ObjectReader r(v, path);
-  const json& xs = r.require("x");
-  const json& ys = r.require("y");
-  jsonread::check_array(xs, r.path_of("x"), 2);
-  jsonread::check_array(ys, r.path_of("y"), 2);
-  if (xs.size() != ys.size())
-    jsonread::fail(r.path_of("y"), "has " + std::to_string(ys.size()) + " values but x has " +
-                                       std::to_string(xs.size()) + "; give one y per x");
-  Waveform w;
-  for (std::size_t i = 0; i < xs.size(); ++i)
-    w.points.push_back({jsonread::as_number(xs[i], jsonread::element_path(r.path_of("x"), i)),
-                        jsonread::as_number(ys[i], jsonread::element_path(r.path_of("y"), i))});
-  w.periodic = r.boolean_or("periodic", false);
-  r.finish();
-  if (const std::string why = waveform_problem(w); !why.empty()) jsonread::fail(path, "the waveform " + why);
-  return w;
 }
 
 Tile read_tile(const json& v, const std::string& path) {
@@ -107,6 +77,36 @@ ChannelLines read_channel_lines(const json& v, const std::string& path, Channel 
 }
 
 }  // namespace
+
+json waveform_json(const Waveform& w) {
+  json x = json::array(), y = json::array();
+  for (const Point& p : w.points) {
+    x.push_back(p.x);
+    y.push_back(p.y);
+  }
+  json j{{"x", x}, {"y", y}};
+  if (w.periodic) j["periodic"] = true;
+  return j;
+}
+
+Waveform read_waveform(const json& v, const std::string& path, const std::string& noun) {
+  ObjectReader r(v, path);
+  const json& xs = r.require("x");
+  const json& ys = r.require("y");
+  jsonread::check_array(xs, r.path_of("x"), 2);
+  jsonread::check_array(ys, r.path_of("y"), 2);
+  if (xs.size() != ys.size())
+    jsonread::fail(r.path_of("y"), "has " + std::to_string(ys.size()) + " values but x has " +
+                                       std::to_string(xs.size()) + "; give one y per x");
+  Waveform w;
+  for (std::size_t i = 0; i < xs.size(); ++i)
+    w.points.push_back({jsonread::as_number(xs[i], jsonread::element_path(r.path_of("x"), i)),
+                        jsonread::as_number(ys[i], jsonread::element_path(r.path_of("y"), i))});
+  w.periodic = r.boolean_or("periodic", false);
+  r.finish();
+  if (const std::string why = waveform_problem(w); !why.empty()) jsonread::fail(path, noun + " " + why);
+  return w;
+}
 
 json to_json(const Design& d) {
   json j{{"format", kDesignFormat}, {"version", kDesignVersion}, {"name", d.name}};

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "knoblab/design/curve.hpp"
+#include "knoblab/design/design_json.hpp"
 #include "knoblab/jsonread/json_reader.hpp"
 
 namespace knoblab::design {
@@ -13,40 +14,12 @@ namespace {
 using jsonread::ObjectReader;
 using nlohmann::json;
 
-json curve_json(const Waveform& w) {
-  json x = json::array(), y = json::array();
-  for (const Point& p : w.points) {
-    x.push_back(p.x);
-    y.push_back(p.y);
-  }
-  json j{{"x", x}, {"y", y}};
-  if (w.periodic) j["periodic"] = true;
-  return j;
-}
-
 const char* position_key(Channel c) {
   switch (c) {
     case Channel::Velocity: return "torque_of_velocity";
     case Channel::Acceleration: return "mass";
     default: return "torque";
   }
-}
-
-Waveform read_curve(const json& v, const std::string& path) {
-  ObjectReader r(v, path);
-  const json& xs = r.require("x");
-  const json& ys = r.require("y");
-  jsonread::check_array(xs, r.path_of("x"), 2);
-  jsonread::check_array(ys, r.path_of("y"), 2);
-  if (xs.size() != ys.size()) jsonread::fail(r.path_of("y"), "needs as many values as x");
-  Waveform w;
-  for (std::size_t i = 0; i < xs.size(); ++i)
-    w.points.push_back({jsonread::as_number(xs[i], jsonread::element_path(r.path_of("x"), i)),
-                        jsonread::as_number(ys[i], jsonread::element_path(r.path_of("y"), i))});
-  w.periodic = r.boolean_or("periodic", false);
-  r.finish();
-  if (const std::string why = waveform_problem(w); !why.empty()) jsonread::fail(path, "the curve " + why);
-  return w;
 }
 
 }  // namespace
@@ -60,6 +33,7 @@ double time_channel_end(const Design& d) {
 
 json load_tiles_args(const Design& d) {
   json position = json::array(), time = json::array();
+  const double time_end = time_channel_end(d);
   for (const Channel c : kChannels) {
     const ChannelLines& cl = d.lines(c);
     if (!cl.play) continue;
@@ -71,14 +45,14 @@ json load_tiles_args(const Design& d) {
           // Time tiles' curves run on their own clock, from 0 at `start`.
           Waveform local = w;
           for (Point& q : local.points) q.x -= p.from;
-          json t{{"start", p.from}, {"duration", p.to - p.from}, {"torque", curve_json(local)}};
+          json t{{"start", p.from}, {"duration", p.to - p.from}, {"torque", waveform_json(local)}};
           if (d.time_loop) {
             t["loop"] = true;
-            t["period"] = time_channel_end(d);
+            t["period"] = time_end;
           }
           time.push_back(t);
         } else {
-          position.push_back({{"theta_min", p.from}, {"theta_max", p.to}, {position_key(c), curve_json(w)}});
+          position.push_back({{"theta_min", p.from}, {"theta_max", p.to}, {position_key(c), waveform_json(w)}});
         }
       }
     }
@@ -108,7 +82,7 @@ Design design_from_load_tiles(const json& args, const std::string& name) {
         if (const json* v = t.find(position_key(c))) {
           ChannelLines& cl = d.lines(c);
           if (cl.lines.empty()) cl.lines.emplace_back();
-          cl.lines[0].tiles.push_back({tile_named(c, cl.lines[0].tiles.size(), read_curve(*v, t.path_of(position_key(c)))), from, to});
+          cl.lines[0].tiles.push_back({tile_named(c, cl.lines[0].tiles.size(), read_waveform(*v, t.path_of(position_key(c)), "the curve")), from, to});
           any = true;
         }
       if (!any) jsonread::fail(path, "has none of torque, torque_of_velocity, mass (the prototyper's curves)");
@@ -121,7 +95,7 @@ Design design_from_load_tiles(const json& args, const std::string& name) {
       ObjectReader t((*list)[i], jsonread::element_path(r.path_of("time"), i));
       const double start = t.find("start") ? t.number("start") : 0.0;
       const double duration = t.number("duration");
-      Waveform w = read_curve(t.require("torque"), t.path_of("torque"));
+      Waveform w = read_waveform(t.require("torque"), t.path_of("torque"), "the curve");
       for (Point& q : w.points) q.x += start;
       if (t.boolean_or("loop", false)) d.time_loop = true;
       if (t.find("period")) t.number("period");  // the channel's length, which the tiles give again

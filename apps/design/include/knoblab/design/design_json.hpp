@@ -6,6 +6,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
@@ -18,6 +19,13 @@ inline constexpr const char* kDesignFormat = "knoblab-design";
 inline constexpr int kDesignVersion = 1;
 
 nlohmann::json to_json(const Design& d);
+
+// A waveform as the file and hapticd's load_tiles both write a curve:
+// {"x": [...], "y": [...], "periodic": true?}. Reading refuses, at `path`,
+// anything that is not such a function; `noun` names it in the sentence
+// ("the waveform", "the curve").
+nlohmann::json waveform_json(const Waveform& w);
+Waveform read_waveform(const nlohmann::json& v, const std::string& path, const std::string& noun = "the waveform");
 Design design_from_json(const nlohmann::json& j);  // throws jsonread::PathError
 
 // Files: read_design throws PathError with the file's name in front (also for
