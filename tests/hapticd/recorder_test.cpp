@@ -5,8 +5,13 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <chrono>
 #include <filesystem>
+#include <future>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "knoblab/hapticd/recorder.hpp"
 #include "knoblab/store/store.hpp"
@@ -106,14 +111,91 @@ TEST(Recorder, ARecordingIsCommittedEveryCommitIntervalNotOnlyInFullBatches) {
   RecorderOptions options;
   options.commit_interval_s = 0.00995;  // 99.5 cycles of the 10 kHz records
   Recorder rec(&s, defaults(), options);
-  feed(rec, 0, 350, 1);  // still recording: 350 samples, 0.035 s
+  for (std::uint64_t seq = 0; seq < 330; ++seq) {  // still recording: 330 samples, 0.033 s
+    rec.take(record(seq, 1));
+    if ((seq + 1) % 40 == 0) rec.pump();  // a store thread that keeps up
+  }
+  rec.pump();
 
   const auto info = reader(db).capture_info(1);
   ASSERT_TRUE(info.has_value());
   EXPECT_EQ(info->status, "recording");
-  // Commits at 101, 202 and 303 samples (each once its newest sample is 100
-  // cycles after the oldest uncommitted one); the last 47 wait for the next.
-  EXPECT_EQ(info->sample_count, 303);
+  // A commit once a pump's newest sample is 100 cycles or more after the
+  // oldest uncommitted one: after the pumps that end at 119 and 239; the
+  // last 90 wait for the next.
+  EXPECT_EQ(info->sample_count, 240);
+}
+
+// A store that fell behind (its last fsync took seconds) finds everything
+// that waited in one batch and commits it at once, instead of one commit per
+// interval of the recording, each waiting for its own fsync.
+TEST(Recorder, AStoreThatFellBehindCatchesUpInOneCommitPerBatch) {
+  TempDb db{"recorder"};
+  store::Store s = store::Store::open(db.path());
+  std::vector<std::int64_t> commits;
+  RecorderOptions options;
+  options.on_commit = [&](std::int64_t committed) { commits.push_back(committed); };
+  options.max_commit_samples = 4000;
+  Recorder rec(&s, defaults(), options);
+  for (std::uint64_t seq = 0; seq < 9000; ++seq) rec.take(record(seq, 1));  // 0.9 s waited
+  rec.pump();
+  EXPECT_EQ(commits, (std::vector<std::int64_t>{4000, 8000}));  // the last 0.1 s waits for more
+  for (std::uint64_t seq = 9000; seq < 9010; ++seq) rec.take(record(seq, 0));
+  rec.close();
+  drain(rec);
+  EXPECT_EQ(commits, (std::vector<std::int64_t>{4000, 8000, 9000}));
+  const auto fin = rec.take_finished();
+  ASSERT_EQ(fin.size(), 1u);
+  EXPECT_TRUE(fin[0].complete) << fin[0].end_reason;
+  EXPECT_EQ(reader(db).capture_info(fin[0].capture_id)->sample_count, 9000);
+}
+
+// The store thread held inside a commit (a disk that takes its time to
+// fsync): the ring thread goes on taking records. Were take() to wait for
+// the commit, the taker below would never finish while the commit is held.
+TEST(Recorder, TakingRecordsNeverWaitsForACommitInProgress) {
+  TempDb db{"recorder"};
+  store::Store s = store::Store::open(db.path());
+  std::promise<void> release;
+  const std::shared_future<void> released = release.get_future().share();
+  std::promise<void> entered;
+  std::atomic<bool> first{true};
+  RecorderOptions options;
+  options.on_commit = [&](std::int64_t) {
+    if (first.exchange(false)) entered.set_value();
+    released.wait();
+  };
+  Recorder rec(&s, defaults(), options);
+  for (std::uint64_t seq = 0; seq < 3000; ++seq) rec.take(record(seq, 1));
+  std::thread store_thread([&] {
+    while (!rec.idle()) {
+      rec.pump();
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+  });
+  const bool in_commit =
+      entered.get_future().wait_for(std::chrono::seconds(30)) == std::future_status::ready;
+  auto taker = std::async(std::launch::async, [&] {
+    for (std::uint64_t seq = 3000; seq < 23000; ++seq) rec.take(record(seq, 1));
+    rec.take(record(23000, 0));
+    rec.close();
+  });
+  const bool took = taker.wait_for(std::chrono::seconds(30)) == std::future_status::ready;
+  const RecorderStats during = rec.stats();
+  release.set_value();
+  taker.get();
+  store_thread.join();
+
+  EXPECT_TRUE(in_commit) << "the store thread never committed";
+  EXPECT_TRUE(took) << "take() waited for the commit in progress";
+  EXPECT_EQ(during.buffered, 23000u);  // the 3000 being committed count until the commit returns
+  const auto fin = rec.take_finished();
+  ASSERT_EQ(fin.size(), 1u);
+  EXPECT_TRUE(fin[0].complete) << fin[0].end_reason;
+  EXPECT_EQ(fin[0].samples, 23000);
+  const auto c = reader(db).load_samples(fin[0].capture_id);
+  ASSERT_EQ(c.size(), 23000u);
+  for (std::size_t i = 0; i < c.size(); ++i) ASSERT_EQ(c.t[i], static_cast<double>(i) * 1e-4);
 }
 
 TEST(Recorder, ARingDropWhileNotRecordingDoesNotMarkTheNextRecordingIncomplete) {
@@ -238,15 +320,15 @@ TEST(Recorder, AStoreErrorOtherThanBusyCutsTheRecordingAndAsksForTheSafeState) {
   store::Store s = store::Store::open(db.path());
   Recorder rec(&s, defaults());
   s.connection().exec(
-      "CREATE TEMP TRIGGER disk_on_fire BEFORE INSERT ON samples WHEN NEW.idx = 2500"
+      "CREATE TEMP TRIGGER disk_on_fire BEFORE INSERT ON samples WHEN NEW.idx = 3000"
       " BEGIN SELECT RAISE(ABORT, 'disk on fire'); END");
-  feed(rec, 0, 5000, 1);
+  feed(rec, 0, 6000, 1);
   EXPECT_TRUE(rec.safe_state_needed());
   EXPECT_EQ(rec.stats().buffered, 0u);  // nothing more of it is kept
-  feed(rec, 5000, 5100, 0);
+  feed(rec, 6000, 6100, 0);
   s.connection().exec("DROP TRIGGER disk_on_fire");
-  feed(rec, 5100, 5300, 2);  // the recorder goes on with the next one
-  feed(rec, 5300, 5310, 0);
+  feed(rec, 6100, 6300, 2);  // the recorder goes on with the next one
+  feed(rec, 6300, 6310, 0);
   rec.close();
   drain(rec);
   const auto fin = rec.take_finished();
@@ -254,12 +336,14 @@ TEST(Recorder, AStoreErrorOtherThanBusyCutsTheRecordingAndAsksForTheSafeState) {
   EXPECT_FALSE(fin[0].complete);
   EXPECT_THAT(fin[0].end_reason, StartsWith("store error: "));
   EXPECT_THAT(fin[0].end_reason, HasSubstr("disk on fire"));
-  EXPECT_EQ(fin[0].samples, 2000);  // the batch committed before the failure
+  // Committed once 0.25 s had waited (pumps every 512: at 2560); the next
+  // commit, at 5120, met the fire.
+  EXPECT_EQ(fin[0].samples, 2560);
   EXPECT_TRUE(fin[1].complete) << fin[1].end_reason;
   auto r = reader(db);
   const auto cut = r.capture_info(fin[0].capture_id);
   EXPECT_EQ(cut->status, "incomplete");
-  EXPECT_EQ(cut->sample_count, 2000);
+  EXPECT_EQ(cut->sample_count, 2560);
   EXPECT_THAT(cut->end_reason.value_or(""), HasSubstr("disk on fire"));
   EXPECT_EQ(r.capture_info(fin[1].capture_id)->sample_count, 200);
 }

@@ -9,9 +9,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <future>
+#include <string>
 #include <thread>
+#include <unistd.h>
 
 #include "knoblab/capture/sim_daq.hpp"
+#include "knoblab/control/telemetry_reader.hpp"
 #include "knoblab/hal/memory_lines.hpp"
 #include "knoblab/hapticd/daemon.hpp"
 #include "knoblab/interchange/csv.hpp"
@@ -35,7 +39,7 @@ struct Rig {
   std::thread loop;
   rt::LoopResult timing;
 
-  explicit Rig(const std::filesystem::path& db, std::size_t record_buffer_samples = 0) {
+  explicit Rig(const std::filesystem::path& db, RecorderOptions recorder = {}, std::string telemetry_shm = "") {
     sim::PlantConfig plant;
     plant.knob = *sim::presets::knob("moderate-detents");
     auto daq = std::make_unique<capture::SimDaq>(plant, 10000.0);
@@ -44,7 +48,8 @@ struct Rig {
     cfg.core.calibration = daq->calibration();
     cfg.db = db;
     cfg.knob = "moderate-detents";
-    cfg.record_buffer_samples = record_buffer_samples;
+    cfg.recorder = std::move(recorder);
+    cfg.telemetry_shm = std::move(telemetry_shm);
     shared_host::configure(cfg);
     auto l = std::make_unique<hal::MemoryLines>(false);
     lines = l.get();
@@ -128,6 +133,65 @@ TEST(DaemonStore, EverySampleIsKeptWhileAnotherWriterHoldsTheStoreLongerThanTheB
   for (std::size_t i = 0; i < c.size(); ++i) ASSERT_EQ(c.t[i], static_cast<double>(i) * (1.0 / 10000.0));
 }
 
+// A disk whose commit takes as long as the test holds it (an SD card's or
+// an emulated disk's fsync can take seconds): while the store thread waits
+// inside it, the loop's telemetry keeps coming and the ring keeps draining.
+// Were the ring drained by the thread that commits, the telemetry would stop
+// until the commit returns, and the reader below would wait in vain.
+TEST(DaemonStore, TelemetryFlowsAndTheRingDrainsWhileACommitWaitsForTheDisk) {
+  TempDb db{"contention"};
+  { store::Store::open(db.path()); }
+  std::promise<void> release;
+  const std::shared_future<void> released = release.get_future().share();
+  std::promise<void> entered;
+  std::atomic<bool> first{true};
+  RecorderOptions slow_disk;
+  slow_disk.on_commit = [&](std::int64_t) {
+    if (first.exchange(false)) entered.set_value();
+    released.wait();
+  };
+  const std::string shm = "/knoblab-store-test-" + std::to_string(::getpid());
+  std::vector<FinishedRecording> f;
+  double telemetry_during_commit_s = 0.0;
+  std::uint64_t dropped = 0;
+  {
+    Rig rig(db.path(), slow_disk, shm);
+    capture::CaptureConfig cc;
+    std::string why;
+    ASSERT_TRUE(rig.daemon->start_capture(cc, 2.0, "moderate-detents", why)) << why;
+    const bool in_commit =
+        entered.get_future().wait_for(std::chrono::seconds(30)) == std::future_status::ready;
+    // One second of the loop's telemetry, read while the commit is held.
+    control::TelemetryReader reader(shm);
+    std::vector<control::TelemetryRecord> buf(256);
+    std::optional<double> t0;
+    const auto give_up = Clock::now() + std::chrono::seconds(30);
+    while (in_commit && telemetry_during_commit_s < 1.0 && Clock::now() < give_up) {
+      const auto r = reader.read(buf);
+      for (std::size_t i = 0; i < r.count; ++i) {
+        if (!t0) t0 = buf[i].t;
+        telemetry_during_commit_s = buf[i].t - *t0;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    const bool still_in_commit = rig.daemon->finished().empty();
+    release.set_value();
+    EXPECT_TRUE(in_commit) << "the capture was never committed";
+    EXPECT_TRUE(still_in_commit);
+    f = rig.wait_finished(std::chrono::seconds(30));
+    dropped = rig.daemon->ring_dropped();
+  }
+  std::printf("[ figures  ] telemetry read while a commit was held: %.2f s of the loop's\n",
+              telemetry_during_commit_s);
+  EXPECT_GE(telemetry_during_commit_s, 1.0) << "telemetry stopped while the store committed";
+  EXPECT_EQ(dropped, 0u);
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_TRUE(f[0].complete) << f[0].end_reason;
+  EXPECT_EQ(f[0].samples, 20000);
+  store::Store s = store::Store::open(db.path());
+  EXPECT_EQ(s.capture_info(f[0].capture_id)->sample_count, 20000);
+}
+
 // A store that stays locked past what the recorder may hold: the capture is
 // stopped, the motor made safe (fault 'recording'), and what was held is
 // stored marked incomplete with the reason.
@@ -136,7 +200,9 @@ TEST(DaemonStore, ACaptureTheStoreCannotTakeIsStoppedAndTheMotorMadeSafe) {
   { store::Store::open(db.path()); }
   std::vector<FinishedRecording> f;
   {
-    Rig rig(db.path(), 5000);  // half a second at 10 kHz
+    RecorderOptions small;
+    small.max_buffered = 5000;  // half a second at 10 kHz
+    Rig rig(db.path(), small);
     auto other = store::sqlite::Connection::open(db.path());
     other.exec("BEGIN IMMEDIATE");
     capture::CaptureConfig cc;

@@ -25,7 +25,11 @@ struct Daemon::Impl {
   std::unique_ptr<control::TelemetryWriter> telemetry;
   std::unique_ptr<ControlHandler> handler;
   std::unique_ptr<control::Server> server;
-  std::thread writer;
+  std::thread writer;  // ring → recorder, telemetry, events
+  std::thread storer;  // recorder → store
+  // The writer has closed the recorder (the loop is gone, its ring empty);
+  // the store thread has written or given up everything and ended.
+  std::atomic<bool> recorder_closed{false}, store_done{false};
 };
 
 namespace {
@@ -65,7 +69,7 @@ Daemon::Daemon(DaemonConfig cfg, std::unique_ptr<capture::Daq> daq, std::unique_
   defaults.rate_hz = cfg_.core.rate_hz;
   defaults.calibration = cfg_.core.calibration.to_json();
   defaults.source = "hapticd";
-  recorder_ = std::make_unique<Recorder>(store_ ? &*store_ : nullptr, defaults);
+  recorder_ = std::make_unique<Recorder>(store_ ? &*store_ : nullptr, defaults, cfg_.recorder);
   if (!cfg_.telemetry_shm.empty()) {
     control::TelemetryConfig t;
     t.shm_name = cfg_.telemetry_shm;
@@ -113,6 +117,7 @@ Daemon::~Daemon() {
   if (impl_->server) impl_->server->stop();
   if (poller_) poller_->stop();
   if (impl_->writer.joinable()) impl_->writer.join();
+  if (impl_->storer.joinable()) impl_->storer.join();
 }
 
 bool Daemon::post(const CoreCommand& c) {
@@ -332,18 +337,11 @@ std::uint32_t Daemon::modbus_status() const { return poller_ ? poller_->status()
 
 std::uint64_t Daemon::ring_dropped() const { return impl_->ring->dropped(); }
 
-// The writer thread: ring → recorder → store, and telemetry. The recorder
-// only buffers what it takes and waits for the store a few milliseconds per
-// attempt, so this thread keeps draining the ring however long another
-// writer (an import, another process) holds the database.
+// The writer thread: ring → recorder, telemetry and events. It never waits
+// for the store (the store thread does), so telemetry flows and the ring
+// drains while a commit waits seconds for an fsync.
 void Daemon::writer_main() {
-  if (cfg_.record_buffer_samples > 0) recorder_->set_max_buffered(cfg_.record_buffer_samples);
   LoopRecord batch[512];
-  // After the loop stopped: how long the store may go without taking any of
-  // what is still buffered before hapticd gives it up and exits.
-  constexpr auto kShutdownPatience = std::chrono::seconds(30);
-  std::optional<std::chrono::steady_clock::time_point> give_up_at;
-  std::uint64_t last_buffered = 0;
   for (;;) {
     const bool done = loop_done_.load(std::memory_order_acquire);
     const std::size_t n = impl_->ring->pop_bulk(batch);
@@ -362,8 +360,10 @@ void Daemon::writer_main() {
         impl_->telemetry->push(ts);
       }
     }
-    if (done && n == 0) recorder_->close();  // the loop is gone and its ring empty
-    recorder_->pump();
+    if (done && n == 0 && !impl_->recorder_closed.load(std::memory_order_relaxed)) {
+      recorder_->close();  // the loop is gone and its ring empty
+      impl_->recorder_closed.store(true, std::memory_order_release);
+    }
     if (recorder_->safe_state_needed()) {
       // A recording the store cannot take: the motor must not go on being
       // driven for it. Safe first, then end the capture (or recording).
@@ -377,6 +377,9 @@ void Daemon::writer_main() {
       post(c);
     }
     collect_finished_calibrations();
+    // Read before the finished list, so that nothing the store thread
+    // finished before it ended is missed.
+    const bool store_done = impl_->store_done.load(std::memory_order_acquire);
     auto fin = recorder_->take_finished();
     publish_events(fin);
     if (!fin.empty()) {
@@ -384,22 +387,40 @@ void Daemon::writer_main() {
       finished_.insert(finished_.end(), fin.begin(), fin.end());
     }
     if (n == 0) {
-      if (done) {
-        if (recorder_->idle()) break;
-        const std::uint64_t buffered = recorder_->stats().buffered;
-        const auto now = std::chrono::steady_clock::now();
-        if (!give_up_at || buffered < last_buffered) give_up_at = now + kShutdownPatience;
-        last_buffered = buffered;
-        if (now > *give_up_at) {
-          std::fprintf(stderr, "hapticd: the store stayed busy; %llu samples not stored\n",
-                       static_cast<unsigned long long>(buffered));
-          recorder_->abandon_all("store busy at shutdown");
-          continue;
-        }
-      }
+      if (store_done) break;
       std::this_thread::sleep_for(std::chrono::milliseconds(2));
     }
   }
+}
+
+// The store thread: what the recorder took goes into the store, one commit
+// per batch. Ends once the recorder is closed and everything is written, or
+// when the store takes nothing for a long while after the loop stopped.
+void Daemon::store_main() {
+  // After the loop stopped: how long the store may go without taking any of
+  // what is still buffered before hapticd gives it up and exits.
+  constexpr auto kShutdownPatience = std::chrono::seconds(30);
+  std::optional<std::chrono::steady_clock::time_point> give_up_at;
+  std::uint64_t last_buffered = 0;
+  for (;;) {
+    const bool closed = impl_->recorder_closed.load(std::memory_order_acquire);
+    recorder_->pump();
+    if (closed) {
+      if (recorder_->idle()) break;
+      const std::uint64_t buffered = recorder_->stats().buffered;
+      const auto now = std::chrono::steady_clock::now();
+      if (!give_up_at || buffered < last_buffered) give_up_at = now + kShutdownPatience;
+      last_buffered = buffered;
+      if (now > *give_up_at) {
+        std::fprintf(stderr, "hapticd: the store stayed busy; %llu samples not stored\n",
+                     static_cast<unsigned long long>(buffered));
+        recorder_->abandon_all("store busy at shutdown");
+        break;
+      }
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  impl_->store_done.store(true, std::memory_order_release);
 }
 
 RecorderStats Daemon::recorder_stats() const { return recorder_->stats(); }
@@ -434,7 +455,15 @@ class Daemon::RunGuard {
   ~RunGuard() {
     write_safe_outputs(*d_.daq_, *d_.lines_);
     d_.loop_done_.store(true, std::memory_order_release);
-    if (d_.impl_->writer.joinable()) d_.impl_->writer.join();
+    // A thread that never started (run() threw first) is not waited for.
+    Impl& i = *d_.impl_;
+    if (!i.storer.joinable()) i.store_done.store(true, std::memory_order_release);
+    if (!i.writer.joinable()) {
+      d_.recorder_->close();
+      i.recorder_closed.store(true, std::memory_order_release);
+    }
+    if (i.writer.joinable()) i.writer.join();
+    if (i.storer.joinable()) i.storer.join();
     if (d_.impl_->server) d_.impl_->server->stop();
     if (d_.poller_) d_.poller_->stop();
   }
@@ -456,6 +485,7 @@ rt::LoopResult Daemon::run() {
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   if (impl_->server) impl_->server->start();
+  impl_->storer = std::thread([this] { store_main(); });
   impl_->writer = std::thread([this] { writer_main(); });
 
   capture::Daq& daq = *daq_;

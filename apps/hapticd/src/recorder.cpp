@@ -1,5 +1,6 @@
 #include "knoblab/hapticd/recorder.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <stdexcept>
@@ -14,16 +15,27 @@ namespace {
 // output (at 10 kHz 600 000 samples, about 34 MB) outlasts any import.
 constexpr double kDefaultBufferSeconds = 60.0;
 
-// Longest a pump() keeps writing before the writer thread returns to the ring.
+// The largest commit when nobody says otherwise. A store that fell behind
+// commits this much per fsync; copying it out under the lock takes well
+// under a millisecond.
+constexpr double kDefaultCommitSeconds = 2.0;
+
+// Longest a pump() keeps writing before the store thread looks up.
 constexpr auto kPumpBudget = std::chrono::milliseconds(50);
 
 }  // namespace
 
 Recorder::Recorder(store::Store* store, store::NewCapture defaults, RecorderOptions options)
-    : store_(store), defaults_(std::move(defaults)), options_(options) {
+    : store_(store), defaults_(std::move(defaults)), options_(std::move(options)) {
   set_max_buffered(options_.max_buffered);
-  // A short wait per attempt: a busy store costs the writer thread a few
-  // milliseconds, then it goes back to draining the ring and tries again.
+  const double rate = defaults_.rate_hz > 0 ? defaults_.rate_hz : 10000.0;
+  if (options_.max_commit_samples == 0)
+    options_.max_commit_samples = static_cast<std::size_t>(rate * kDefaultCommitSeconds);
+  writer_options_.batch_size = options_.max_commit_samples;
+  writer_options_.on_commit = options_.on_commit;
+  batch_.reserve(options_.max_commit_samples);
+  // A short wait per attempt: a busy store costs the store thread a few
+  // milliseconds, then it tries again on the next pump.
   if (store_) store_->set_busy_timeout(options_.busy_timeout_ms);
 }
 
@@ -47,6 +59,7 @@ void Recorder::set_max_buffered(std::size_t samples) {
     const double rate = defaults_.rate_hz > 0 ? defaults_.rate_hz : 10000.0;
     samples = static_cast<std::size_t>(rate * kDefaultBufferSeconds);
   }
+  std::lock_guard lock(mutex_);
   options_.max_buffered = samples;
   capacity_.store(samples, std::memory_order_relaxed);
 }
@@ -84,6 +97,7 @@ void Recorder::end_back() {
 }
 
 void Recorder::take(const LoopRecord& r) {
+  std::lock_guard lock(mutex_);
   // A gap in the cycle numbers is records the ring dropped. They belong to
   // the recording on both sides of the gap; at a boundary they may belong to
   // either, so both are charged ("up to"). A gap between records of no
@@ -115,7 +129,7 @@ void Recorder::take(const LoopRecord& r) {
   Recording& rec = recordings_.back();
   if (!rec.cut.empty()) return;  // cut short: the rest of it is not stored
   if (store_ && queued_ >= options_.max_buffered) {
-    cut(rec, "store busy: its buffer of " + std::to_string(options_.max_buffered) + " samples filled",
+    (void)cut(rec, "store busy: its buffer of " + std::to_string(options_.max_buffered) + " samples filled",
         false);
     return;
   }
@@ -134,7 +148,7 @@ void Recorder::take(const LoopRecord& r) {
     max_buffered_.store(buffered, std::memory_order_relaxed);
 }
 
-void Recorder::cut(Recording& rec, const std::string& why, bool discard) {
+std::optional<std::string> Recorder::cut(Recording& rec, const std::string& why, bool discard) {
   if (rec.cut.empty()) {
     rec.cut = why;
     failed_.fetch_add(1, std::memory_order_relaxed);
@@ -143,18 +157,12 @@ void Recorder::cut(Recording& rec, const std::string& why, bool discard) {
     // on being driven for samples nobody will see.
     if (!rec.ended) safe_needed_ = true;
   }
-  if (!discard || rec.discard) return;
+  if (!discard || rec.discard) return std::nullopt;
   rec.discard = true;
   queued_ -= rec.samples.size();
   rec.samples.clear();
-  if (rec.writer) {
-    try {
-      rec.writer->abandon(end_reason(rec));
-    } catch (const std::exception&) {
-      // The store refuses even that; the row stays 'recording' until the
-      // next open after hapticd exits marks it 'incomplete'.
-    }
-  }
+  if (!rec.writer) return std::nullopt;
+  return end_reason(rec);
 }
 
 std::string Recorder::end_reason(const Recording& rec) const {
@@ -191,65 +199,118 @@ void Recorder::finalize_front() {
 
 void Recorder::pump() {
   const auto until = std::chrono::steady_clock::now() + kPumpBudget;
-  while (!recordings_.empty()) {
-    Recording& rec = recordings_.front();
-    if (!store_ || rec.discard) {
-      if (!rec.ended) break;
+  while (write_front(until)) {
+  }
+  std::lock_guard lock(mutex_);
+  update_stats();
+}
+
+bool Recorder::write_front(std::chrono::steady_clock::time_point until) {
+  // What to write, copied out under the lock. take() only ever appends to
+  // the back of recordings_ and of their sample deques, and only this thread
+  // removes from the front, so `rec` stays valid without the lock; its
+  // writer is this thread's alone.
+  Recording* rec = nullptr;
+  bool ends = false;  // the batch holds the recording's last sample
+  store::NewCapture info;
+  {
+    std::lock_guard lock(mutex_);
+    if (recordings_.empty()) return false;
+    rec = &recordings_.front();
+    if (!store_ || rec->discard) {
+      if (!rec->ended) return false;
       finalize_front();
-      continue;
+      return true;
     }
+    const std::size_t n = std::min(rec->samples.size(), options_.max_commit_samples);
+    batch_.assign(rec->samples.begin(), rec->samples.begin() + static_cast<std::ptrdiff_t>(n));
+    ends = rec->ended && n == rec->samples.size();
+    if (!rec->writer) info = rec->info;
+  }
+
+  std::size_t written = 0;  // of batch_, taken by the writer (or refused as unstorable)
+  std::uint64_t unstorable = 0;
+  std::string unstorable_why;
+  // Hands the written samples' places over to the writer, under the lock.
+  const auto consume = [&] {
+    std::lock_guard lock(mutex_);
+    for (std::size_t i = 0; i < written; ++i) rec->samples.pop_front();
+    queued_ -= written;
+    if (unstorable != 0 && rec->unstorable == 0) rec->unstorable_why = unstorable_why;
+    rec->unstorable += unstorable;
+  };
+  try {
+    if (!rec->writer) rec->writer.emplace(store_->begin_capture(info, writer_options_));
+    store::CaptureWriter& w = *rec->writer;
     try {
-      if (!rec.writer) rec.writer.emplace(store_->begin_capture(rec.info));
-      std::size_t n = 0;
-      while (!rec.samples.empty()) {
-        const std::int64_t before = rec.writer->appended();
-        const double t = rec.samples.front().t;
+      for (const store::Sample& sample : batch_) {
+        const std::int64_t before = w.appended();
         try {
-          rec.writer->append(rec.samples.front());
+          w.append(sample);
         } catch (const std::invalid_argument& e) {
           // A sample the store cannot hold (a non-finite value): it is left
           // out and the capture says so; the rest is still worth keeping.
-          if (rec.unstorable++ == 0) rec.unstorable_why = e.what();
+          if (unstorable++ == 0) unstorable_why = e.what();
         } catch (const store::StoreError&) {
           // A full batch failed to commit: the writer keeps it (and this
           // sample, if it took it), and retries on the next append.
-          if (rec.writer->appended() > before) {
-            rec.samples.pop_front();
-            --queued_;
-          }
+          if (w.appended() > before) ++written;
           throw;
         }
-        rec.samples.pop_front();
-        --queued_;
-        const std::int64_t held = rec.writer->appended() - rec.writer->committed();
-        if (held == 1) rec.uncommitted_t = t;
-        if (held > 0 && t - rec.uncommitted_t >= options_.commit_interval_s) rec.writer->flush();
-        if (++n % 256 == 0 && std::chrono::steady_clock::now() > until) {
-          update_stats();
-          return;
-        }
+        ++written;
+        if (w.appended() - w.committed() == 1) rec->uncommitted_t = sample.t;
       }
-      if (!rec.ended) break;
-      if (!rec.bio_saved) {
-        if (!rec.bio.empty()) store_->append_biometrics(rec.writer->capture_id(), rec.bio);
-        rec.bio_saved = true;
-      }
-      const std::string why = end_reason(rec);
-      if (why.empty())
-        rec.writer->finish();
-      else
-        rec.writer->finish_incomplete(why);
-      finalize_front();
-    } catch (const store::StoreError& e) {
-      if (store::sqlite::is_busy(e)) {
-        // Another writer holds the lock: keep everything, try again later.
-        retries_.fetch_add(1, std::memory_order_relaxed);
-        break;
-      }
-      cut(rec, std::string("store error: ") + e.what(), true);
+      // One commit per batch at most: a store that fell behind catches up
+      // in large commits, one that keeps up commits every interval.
+      const std::int64_t held = w.appended() - w.committed();
+      if (held > 0 && !batch_.empty() && batch_.back().t - rec->uncommitted_t >= options_.commit_interval_s)
+        w.flush();
+    } catch (...) {
+      consume();
+      throw;
     }
+    consume();
+    if (!ends) return written == options_.max_commit_samples && std::chrono::steady_clock::now() < until;
+
+    std::string why;
+    std::vector<store::BiometricSample> bio;
+    {
+      std::lock_guard lock(mutex_);
+      why = end_reason(*rec);
+      if (!rec->bio_saved) bio = rec->bio;
+    }
+    if (!rec->bio_saved) {
+      if (!bio.empty()) store_->append_biometrics(w.capture_id(), bio);
+      rec->bio_saved = true;
+    }
+    if (why.empty())
+      w.finish();
+    else
+      w.finish_incomplete(why);
+    std::lock_guard lock(mutex_);
+    finalize_front();
+    return std::chrono::steady_clock::now() < until;
+  } catch (const store::StoreError& e) {
+    if (store::sqlite::is_busy(e)) {
+      // Another writer holds the lock: keep everything, try again later.
+      retries_.fetch_add(1, std::memory_order_relaxed);
+      return false;
+    }
+    std::optional<std::string> abandon;
+    {
+      std::lock_guard lock(mutex_);
+      abandon = cut(*rec, std::string("store error: ") + e.what(), true);
+    }
+    if (abandon) {
+      try {
+        rec->writer->abandon(*abandon);
+      } catch (const std::exception&) {
+        // The store refuses even that; the row stays 'recording' until the
+        // next open after hapticd exits marks it 'incomplete'.
+      }
+    }
+    return true;
   }
-  update_stats();
 }
 
 void Recorder::update_stats() {
@@ -263,11 +324,15 @@ void Recorder::update_stats() {
 }
 
 void Recorder::close() {
+  std::lock_guard lock(mutex_);
   if (current_ != 0) end_back();
   current_ = 0;
 }
 
 void Recorder::abandon_all(const std::string& reason) {
+  // Only at shutdown, when nothing is taken any more: the store calls under
+  // the lock hold up nobody.
+  std::lock_guard lock(mutex_);
   if (current_ != 0) end_back();  // normally close() came first
   current_ = 0;
   while (!recordings_.empty()) {
@@ -286,7 +351,13 @@ void Recorder::abandon_all(const std::string& reason) {
   update_stats();
 }
 
+bool Recorder::idle() const {
+  std::lock_guard lock(mutex_);
+  return recordings_.empty();
+}
+
 bool Recorder::safe_state_needed() {
+  std::lock_guard lock(mutex_);
   const bool needed = safe_needed_;
   safe_needed_ = false;
   return needed;
@@ -301,6 +372,7 @@ void Recorder::add_biometrics(const store::BiometricSample& b) {
 }
 
 std::vector<FinishedRecording> Recorder::take_finished() {
+  std::lock_guard lock(mutex_);
   std::vector<FinishedRecording> out;
   out.swap(finished_);
   return out;

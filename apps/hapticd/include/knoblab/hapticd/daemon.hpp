@@ -1,6 +1,7 @@
 // hapticd put together: the realtime loop (rt::PeriodicLoop running
 // HapticCore over a DAQ and digital lines) feeding a lock-free ring; a writer
-// thread draining it into the store and telemetry; the control server; the
+// thread draining it into telemetry and the recorder, and a store thread
+// committing the recorder's batches; the control server; the
 // Modbus poller. Data flows one way: HAL → loop → ring → store / telemetry.
 #pragma once
 
@@ -47,9 +48,10 @@ struct DaemonConfig {
   // Render model loaded at start (hapticd --model FILE): rendered once the
   // mode is set to render, and the base later set_params calls change.
   std::optional<RenderParams> initial_model;
-  // Samples the recorder holds while the store is busy; beyond that the
-  // recording is cut and the motor made safe. 0: 60 s at the loop rate.
-  std::size_t record_buffer_samples = 0;
+  // How recordings go into the store: among others the samples held while
+  // the store is busy (max_buffered; beyond it the recording is cut and the
+  // motor made safe; 0: 60 s at the loop rate) and how often they commit.
+  RecorderOptions recorder{};
   // Where accepted calibrations are kept (calibration_file.hpp); empty: in
   // memory only. core.calibration is what it held at start, and
   // accepted_calibrations its record of what was accepted when.
@@ -128,6 +130,7 @@ class Daemon {
   struct Impl;
   class RunGuard;
   void writer_main();
+  void store_main();
   void publish_events(const std::vector<FinishedRecording>& finished);
   // Writer thread: fits each calibration run that ended into the history.
   void collect_finished_calibrations();

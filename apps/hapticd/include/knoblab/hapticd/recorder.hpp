@@ -1,22 +1,29 @@
 // The non-realtime end of the loop's ring: every record of a recording goes
-// into the store in committed batches. Runs on the writer thread; nothing
-// here is ever called by the loop.
+// into the store in committed batches. Nothing here is ever called by the
+// loop.
 //
-// Taking a record (take) never touches the store: it only buffers, so the
-// writer thread keeps draining the ring however slow the store is. Writing
-// (pump) waits for another writer's lock at most a few milliseconds per
-// attempt; while the store stays busy (an import, another process) the
-// samples wait in memory and the next pump retries. The buffer is bounded;
-// a recording that outgrows it, or meets a store error that is not "busy",
-// cannot be stored: it is cut there, marked 'incomplete' with the reason,
-// and safe_state_needed() asks the daemon to stop it and make the motor safe.
+// Two threads use it. The ring thread takes records (take): that only
+// buffers, under a lock no store call is ever made under, so the ring keeps
+// draining and telemetry keeps flowing however long a commit takes (an
+// fsync on an SD card or an emulated disk takes seconds). The store thread
+// writes (pump): it copies what is waiting, writes it without the lock, and
+// commits once per batch, so a store that fell behind catches up in a few
+// large commits instead of many small ones. A store call waits for another
+// writer's lock at most a few milliseconds; while the store stays busy (an
+// import, another process) the samples wait in memory and the next pump
+// retries. The buffer is bounded; a recording that outgrows it, or meets a
+// store error that is not "busy", cannot be stored: it is cut there, marked
+// 'incomplete' with the reason, and safe_state_needed() asks the daemon to
+// stop it and make the motor safe.
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <map>
 #include <deque>
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -58,18 +65,25 @@ struct RecorderOptions {
   // Samples held for a busy store; 0: 60 s at the defaults' rate_hz.
   std::size_t max_buffered = 0;
   // Each store attempt waits this long for another writer's lock, then the
-  // writer thread goes back to the ring and retries on the next pump.
+  // store thread retries on the next pump.
   int busy_timeout_ms = 10;
   // Samples are committed at least this often (in the recording's time), not
   // only in full batches: a power cut loses at most this much of a capture,
-  // at 250 Hz as at 10 kHz.
+  // at 250 Hz as at 10 kHz, besides what the store had not yet been given.
   double commit_interval_s = 0.25;
+  // The most one commit holds; 0: 2 s at the defaults' rate_hz. A store that
+  // fell behind catches up in commits this large.
+  std::size_t max_commit_samples = 0;
+  // Called on the store thread after each commit with what the capture has
+  // committed so far (a slow disk in tests holds the commit here).
+  std::function<void(std::int64_t committed)> on_commit;
 };
 
 class Recorder {
  public:
   // `defaults` describes recordings nobody described (e.g. a trial). With a
   // store, sets that connection's busy timeout (options.busy_timeout_ms).
+  // The store is used by pump()'s thread only.
   Recorder(store::Store* store, store::NewCapture defaults, RecorderOptions options = {});
 
   // How recording `recording_id` is described in the store (set before the
@@ -79,20 +93,25 @@ class Recorder {
                 RecordingKind kind = RecordingKind::other);
   void set_max_buffered(std::size_t samples);
 
+  // --- the ring thread ---
   // One record from the ring, in order of LoopRecord::seq: a gap in seq is
   // records the ring lost, charged to the recording they belonged to.
-  // Buffers only; never blocks, never throws for the store.
+  // Buffers only; never waits for the store, never throws for it.
   void take(const LoopRecord& record);
-  // Writes what was taken, as far as the store lets it now, for at most
-  // about 50 ms (so the writer thread gets back to the ring).
-  void pump();
   // The loop stopped: the open recording ends with its last record.
   void close();
-  // Nothing taken is left to write (after close(): everything is stored).
-  bool idle() const { return recordings_.empty(); }
+
+  // --- the store thread ---
+  // Writes what was taken, as far as the store lets it now, for at most
+  // about 50 ms (so the thread can notice a shutdown).
+  void pump();
   // Gives up on everything still buffered (the store stayed busy at shutdown):
   // marks what it can 'incomplete' with `reason`.
   void abandon_all(const std::string& reason);
+
+  // --- any thread ---
+  // Nothing taken is left to write (after close(): everything is stored).
+  bool idle() const;
 
   // True once per recording that could not be stored: the caller stops it
   // and puts the motor in the safe state (kFaultRecording).
@@ -110,11 +129,12 @@ class Recorder {
  private:
   // One recording on its way into the store; the front of recordings_ is the
   // one being written, the back the one the loop may still be recording.
+  // Its fields are under mutex_, except those marked "store thread".
   struct Recording {
     std::uint32_t id = 0;
     store::NewCapture info;
     RecordingKind kind = RecordingKind::other;
-    std::optional<store::CaptureWriter> writer;  // once its row exists
+    std::optional<store::CaptureWriter> writer;  // store thread: once its row exists
     std::deque<store::Sample> samples;           // taken, not yet handed to the writer
     std::int64_t taken = 0;
     std::uint32_t faults = 0;     // every Fault bit latched during it
@@ -127,21 +147,33 @@ class Recorder {
     bool discard = false;         // a store error: nothing more of it is written
     bool ended = false;           // its last record has been taken
     std::vector<store::BiometricSample> bio;
-    bool bio_saved = false;
+    bool bio_saved = false;       // store thread
     double last_t = 0.0;          // t of its newest sample
-    double uncommitted_t = 0.0;   // t of the oldest sample the writer holds uncommitted
+    double uncommitted_t = 0.0;   // store thread: t of the oldest sample the writer holds uncommitted
   };
 
+  // All under mutex_.
   void start(const LoopRecord& r);
   void end_back();
-  void cut(Recording& rec, const std::string& why, bool discard);
+  // Marks `rec` cut short; with `discard`, drops what it holds and returns
+  // the reason its writer must be abandoned with (outside the lock).
+  std::optional<std::string> cut(Recording& rec, const std::string& why, bool discard);
   void finalize_front();
   std::string end_reason(const Recording& rec) const;
   void update_stats();
 
+  // Store thread: writes one batch of the front recording, finishes it when
+  // it has ended and everything is written. False: nothing more to do now.
+  bool write_front(std::chrono::steady_clock::time_point until);
+
   store::Store* store_;
   store::NewCapture defaults_;
   RecorderOptions options_;
+  store::WriterOptions writer_options_;
+  std::vector<store::Sample> batch_;  // store thread: copied out of the front recording
+
+  // The recordings, everything take() does and the finished list.
+  mutable std::mutex mutex_;
   std::mutex described_mutex_;  // describe() comes from control threads
   struct Description {
     store::NewCapture info;
