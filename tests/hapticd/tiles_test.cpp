@@ -215,6 +215,26 @@ TEST(TilesJson, OverlappingStiffTilesAddUpAgainstTheStableRegion) {
   ASSERT_TRUE(q);
 }
 
+// A damping curve changes B at every point it is checked at, so each point
+// is tested on its own: the check refuses the curve where it has risen past
+// the loop's stable damping, and passes the same curve scaled inside it.
+TEST(TilesJson, ADampingCurveIsRefusedWhereItRisesBeyondTheStableDamping) {
+  const double b_max = default_loop().max_damping(0.0);
+  const json over = damping_tile({0.1 * b_max, 0.5 * b_max, 0.9 * b_max, 1.3 * b_max, 1.6 * b_max});
+  const auto p = problem_of({{"position", {over}}});
+  ASSERT_TRUE(p);
+  EXPECT_EQ(p->key, "position[0].f_vel");
+  EXPECT_NE(p->message.find("its damping reaches"), std::string::npos) << p->message;
+  // Where it crossed: past θ = 0 (0.9 × the bound), before θ = 0.5 (1.3 ×).
+  const auto at = p->message.find("at θ = ");
+  ASSERT_NE(at, std::string::npos) << p->message;
+  const double theta = std::stod(p->message.substr(at + std::string("at θ = ").size()));
+  EXPECT_GT(theta, 0.0) << p->message;
+  EXPECT_LT(theta, 0.5) << p->message;
+  const json inside = damping_tile({0.05 * b_max, 0.25 * b_max, 0.45 * b_max, 0.65 * b_max, 0.8 * b_max});
+  EXPECT_FALSE(problem_of({{"position", {inside}}}));
+}
+
 TEST(TilesJson, ADampingDownSlopeSteeperThanTheGripIsRefused) {
   // A local fall of more than 20 mN·m·s/rad around rest, twice the grip's
   // damping, flat beyond 0.5 rad/s (so within the torque limit at any speed).

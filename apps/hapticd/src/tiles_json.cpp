@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -174,16 +175,27 @@ void check_stability(const TileSet& set, const SafetyLimits& limits, const model
   const auto key_of = [](std::size_t i) { return "position[" + std::to_string(i) + "]"; };
   // One eigenvalue problem per (K, B) took 0.3–0.7 s for a curved tile and
   // seconds for a design, longer than a client waits for its reply. Along a
-  // tile K changes at every point while B takes few values (damping tiles are
-  // lines), so each B's stable stiffnesses are found once, as an interval,
-  // by bisection; points inside it with margin need no test of their own.
-  struct StiffnessInterval {
-    double lo, hi;  // stable for lo ≤ K ≤ hi; empty (lo > hi) when B alone is not
+  // tile one of K and B usually holds still while the other changes at every
+  // point (a stiffness curve over constant damping, a damping curve without
+  // stiffness), so a value of either met often gets its stable range of the
+  // other once, by bisection (50–80 eigenvalue problems); points inside it
+  // with margin need no test of their own. Until then, and where both
+  // change, each point is tested on its own.
+  constexpr int kTestsBeforeRange = 24;
+  struct Range {
+    double lo, hi;  // stable for lo ≤ x ≤ hi; empty (lo > hi) when the fixed value alone is not
+    bool holds(double x, const std::function<bool()>& test) const {
+      if (!(lo <= hi)) return false;
+      const double margin = 1e-6 * std::max(1.0, std::abs(hi) + std::abs(lo));
+      if (x >= lo + margin && x <= hi - margin) return true;
+      if (x < lo - margin || x > hi + margin) return false;
+      return test();  // at an end of the range: test it
+    }
   };
-  std::map<double, StiffnessInterval> by_damping;
-  const auto interval_for = [&](double B) -> const StiffnessInterval& {
-    if (auto it = by_damping.find(B); it != by_damping.end()) return it->second;
-    StiffnessInterval in{1.0, 0.0};
+  std::map<double, Range> k_by_damping, b_by_stiffness;
+  std::map<double, int> tests_at_b, tests_at_k;
+  const auto stiffness_range = [&](double B) {
+    Range in{1.0, 0.0};
     if (loop.renders_stably(0.0, B)) {
       in.hi = loop.max_stiffness(B);
       double bad = -1e4, good = 0.0;  // the falling side of a detent: how steep a fall renders
@@ -194,15 +206,22 @@ void check_stability(const TileSet& set, const SafetyLimits& limits, const model
       }
       in.lo = good;
     }
-    return by_damping.emplace(B, in).first->second;
+    return in;
+  };
+  const auto damping_range = [&](double K) {
+    Range in{1.0, 0.0};
+    if (loop.renders_stably(K, 0.0)) in = {loop.min_damping(K), loop.max_damping(K)};
+    return in;
   };
   const auto stable = [&](double K, double B) {
-    const StiffnessInterval& in = interval_for(B);
-    if (!(in.lo <= in.hi)) return false;
-    const double margin = 1e-6 * std::max(1.0, std::abs(in.hi) + std::abs(in.lo));
-    if (K >= in.lo + margin && K <= in.hi - margin) return true;
-    if (K < in.lo - margin || K > in.hi + margin) return false;
-    return loop.renders_stably(K, B);  // at an end of the interval: test it
+    const auto test = [&] { return loop.renders_stably(K, B); };
+    if (auto it = k_by_damping.find(B); it != k_by_damping.end()) return it->second.holds(K, test);
+    if (auto it = b_by_stiffness.find(K); it != b_by_stiffness.end()) return it->second.holds(B, test);
+    if (++tests_at_b[B] > kTestsBeforeRange)
+      return k_by_damping.emplace(B, stiffness_range(B)).first->second.holds(K, test);
+    if (++tests_at_k[K] > kTestsBeforeRange)
+      return b_by_stiffness.emplace(K, damping_range(K)).first->second.holds(B, test);
+    return test();
   };
   for (std::size_t i = 0; i < n; ++i) {
     const model::PositionTile& tile = set.position[i];
@@ -236,7 +255,9 @@ void check_stability(const TileSet& set, const SafetyLimits& limits, const model
                                              short_number(th) + " rad" + together + ", beyond the renderer's " +
                                              short_number(kMaxTileMass * 1e3) + " mN·m/(rad/s²) (thesis Table 9)");
       }
-      for (const double Bv : {B + B_hi, B + B_lo}) {
+      const int sides = B_lo == B_hi ? 1 : 2;  // the same B twice: once
+      for (int side = 0; side < sides; ++side) {
+        const double Bv = side == 0 ? B + B_hi : B + B_lo;
         if (stable(K, Bv)) continue;
         const double K_max = loop.max_stiffness(Bv);
         if (std::isfinite(K_max) && K > K_max) {  // too stiff: blame the stiffest curve there
@@ -260,7 +281,7 @@ void check_stability(const TileSet& set, const SafetyLimits& limits, const model
         }
         // Otherwise the damping: too much for the filtered velocity's lag,
         // or a down-slope steeper than the grip's own damping.
-        const bool too_high = Bv == B + B_hi && Bv > 0.0;
+        const bool too_high = side == 0 && Bv > 0.0;
         const double edge = too_high ? loop.max_damping(K) : loop.min_damping(K);
         std::size_t j_best = i;
         double best = -1.0;
