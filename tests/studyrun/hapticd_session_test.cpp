@@ -9,9 +9,12 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
+#include <future>
 #include <string>
+#include <thread>
 
 #include "knoblab/store/store.hpp"
+#include "knoblab/studyrun/hapticd_apparatus.hpp"
 #include "process.hpp"
 #include "protocols.hpp"
 
@@ -146,6 +149,36 @@ TEST(StudyThroughHapticd, ShortenedPointingMatchingAndListSelectionRunEndToEndWi
         }
       }
   }
+}
+
+// Another process holds the store (an import, say) past the 10 s a trial's
+// report used to be waited for: hapticd keeps the trial's samples in memory,
+// the session waits while hapticd says it still holds samples to store, and
+// gets the recording, complete, once the store is free.
+TEST(StudyThroughHapticd, AStoppedTrialIsWaitedForWhileHapticdStillHoldsItsSamplesForABusyStore) {
+  Rig rig;
+  studyrun::HapticdApparatus apparatus(rig.socket());
+  apparatus.start_trial({"busy-store", "P01", "c1"});
+  std::this_thread::sleep_for(1s);
+  auto other = store::sqlite::Connection::open(rig.db());
+  other.exec("BEGIN IMMEDIATE");
+  auto stopping = std::async(std::launch::async, [&] { return apparatus.stop_trial(); });
+  const bool waited = stopping.wait_for(13s) == std::future_status::timeout;
+  other.exec("COMMIT");
+  studyrun::TrialRecording rec;
+  std::string error;
+  try {
+    rec = stopping.get();
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  EXPECT_TRUE(waited) << "stop_trial returned while the store was held: " << error;
+  ASSERT_EQ(error, "");
+  EXPECT_TRUE(rec.complete) << rec.end_reason;
+  ASSERT_TRUE(rec.capture_id);
+  store::Store s = store::Store::open(rig.db(), {.read_only = true});
+  EXPECT_EQ(s.capture_info(*rec.capture_id)->status, "complete");
+  EXPECT_GT(s.load_samples(*rec.capture_id).t.size(), 4000u);  // about a second at 5 kHz
 }
 
 TEST(StudyThroughHapticd, KilledMidSessionWithHapticdItResumesAtTheNextTrialAndLosesNothingCommitted) {

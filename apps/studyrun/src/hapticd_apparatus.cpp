@@ -108,12 +108,27 @@ std::optional<control::Event> HapticdApparatus::wait_event(std::chrono::millisec
 TrialRecording HapticdApparatus::stop_trial() {
   recording_ = false;  // asked once: a refusal means there is nothing left to stop
   call("stop_trial");
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  // hapticd reports the recording once its last sample is committed; a fault
+  // now ends the recording too, and the report still comes. Commits can
+  // trail the recording by seconds (an SD card's or an emulated disk's
+  // fsync, another process holding the store), so the wait goes on while
+  // hapticd says it still holds samples to store, up to a few minutes; with
+  // nothing left to store, 10 s without the report means it is not coming.
+  constexpr auto kQuiet = std::chrono::seconds(10);
+  constexpr auto kLongest = std::chrono::minutes(3);
+  const auto asked = std::chrono::steady_clock::now();
+  auto deadline = asked + kQuiet;
   while (!stopped_) {
-    // The writer thread stores the recording, then says so; a fault now ends
-    // the recording too, and the event still comes.
-    if (std::chrono::steady_clock::now() > deadline)
-      throw ApparatusError("hapticd did not report the trial's recording within 10 s");
+    const auto now = std::chrono::steady_clock::now();
+    if (now > deadline) {
+      const nlohmann::json state = call("get_state");
+      const auto buffered = state.value("/recorder/buffered"_json_pointer, std::uint64_t{0});
+      if (buffered == 0 || now - asked > kLongest)
+        throw ApparatusError("hapticd did not report the trial's recording within " +
+                             std::to_string(std::chrono::duration_cast<std::chrono::seconds>(now - asked).count()) +
+                             " s" + (buffered ? " (" + std::to_string(buffered) + " samples still waiting for the store)" : ""));
+      deadline = now + kQuiet;
+    }
     if (auto e = wait_event(std::chrono::milliseconds(100))) take(*e, false);
   }
   TrialRecording rec = *stopped_;

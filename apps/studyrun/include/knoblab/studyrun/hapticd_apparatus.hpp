@@ -20,10 +20,10 @@ class HapticdApparatus final : public Apparatus {
  public:
   // Connects (throws ApparatusError naming the socket and the reason).
   // Telemetry silent for `silence_limit` means hapticd is gone (a killed
-  // daemon never closes its ring). hapticd's writer thread publishes the
-  // telemetry between its store commits, and a commit's fsync can hold it
-  // well over a second on an SD card or an emulated disk (the QEMU image
-  // stalled 1 s), so the limit is several seconds, not one.
+  // daemon never closes its ring). Store commits do not hold the telemetry
+  // up, but an emulated or overloaded machine can leave hapticd's writer
+  // thread unscheduled for a second or more, so the limit is several
+  // seconds, not one.
   explicit HapticdApparatus(const std::string& socket_path,
                             std::chrono::milliseconds silence_limit = std::chrono::milliseconds(5000));
   // Stops a trial's recording left running by a session that was stopped or
