@@ -191,6 +191,30 @@ TEST(Discover, NamesAnEndstopAtTheExtremesOfTheTravel) {
   EXPECT_NEAR(param(f, "position_rad"), 3.6, 0.25);
   EXPECT_GT(param(f, "stiffness_Nm_per_rad"), 10.0);
   EXPECT_LT(f.heldout_rmse_after_Nm, 0.9 * f.heldout_rmse_before_Nm);
+  // A mechanical stop climbs on: no torque it tops out at.
+  for (const auto& [name, value] : f.params) EXPECT_NE(name, "max_torque_Nm") << value;
+}
+
+TEST(Discover, NamesAWallThatTopsOutAndTheTorqueItHolds) {
+  // A rendered wall: 20 N·m/rad beyond ±3 rad of the ±4 rad sweep, holding
+  // at 4 N·m (the validation data's units; its detents are 0.9, its noise SD
+  // 1.15), 0.2 rad in.
+  model::Walls<double> wall;
+  wall.lo = -3.0, wall.hi = 3.0, wall.K = 20.0, wall.limit = 4.0;
+  const DiscrepancyResult r = discover(with_effect(9, [&](const fit::FitData& d, std::size_t i) {
+    return wall.torque(d.theta[i], d.omega[i]);
+  }));
+  ASSERT_FALSE(r.findings.empty()) << to_json(r);
+  const Finding& f = r.findings.front();
+  EXPECT_EQ(f.effect, EffectId::Endstop) << to_json(r);
+  EXPECT_NEAR(param(f, "position_rad"), 3.0, 0.1);
+  EXPECT_NEAR(param(f, "max_torque_Nm"), 4.0, 0.4);
+  EXPECT_GT(param(f, "stiffness_Nm_per_rad"), 8.0);
+  EXPECT_NE(f.explanation.find("holds there"), std::string::npos) << f.explanation;
+  EXPECT_LT(f.heldout_rmse_after_Nm, 0.8 * f.heldout_rmse_before_Nm);
+  // The knob's own detents (5 per revolution) are not taken for anything else.
+  for (const auto& [name, value] : r.final_model.params)
+    if (name == "P_pos") EXPECT_NEAR(1.0 / std::abs(value), 5.0, 0.1) << to_json(r);
 }
 
 }  // namespace

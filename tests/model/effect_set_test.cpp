@@ -3,12 +3,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "knoblab/model/effect_set.hpp"
 #include "knoblab/model/models.hpp"
 
 namespace knoblab::model {
 namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 EffectSet<double> some_effects() {
   EffectSet<double> e;
@@ -38,14 +41,17 @@ TEST(EffectSet, SumsTheLibraryTermsItHolds) {
 }
 
 TEST(EffectSet, ScaledToAFractionScalesEveryTermAndToZeroLeavesNone) {
-  const EffectSet<double> e = some_effects();
-  const EffectSet<double> half = e.scaled(0.5), none = e.scaled(0.0);
-  for (const double theta : {-1.3, 0.2, 1.1}) {
-    EXPECT_NEAR(half.held(theta, 0.3), 0.5 * e.held(theta, 0.3), 1e-15) << theta;
-    EXPECT_EQ(none.held(theta, 0.3), 0.0) << theta;
+  EffectSet<double> e = some_effects();
+  for (const double limit : {kInfinity, 0.15}) {  // a wall that climbs on, and one that tops out
+    e.walls.limit = limit;
+    const EffectSet<double> half = e.scaled(0.5), none = e.scaled(0.0);
+    for (const double theta : {-1.3, 0.2, 1.1, 1.2}) {
+      EXPECT_NEAR(half.held(theta, 0.3), 0.5 * e.held(theta, 0.3), 1e-15) << theta;
+      EXPECT_EQ(none.held(theta, 0.3), 0.0) << theta;
+    }
+    EXPECT_NEAR(half.sliding(-0.4), 0.5 * e.sliding(-0.4), 1e-15);
+    EXPECT_EQ(none.sliding(-0.4), 0.0);
   }
-  EXPECT_NEAR(half.sliding(-0.4), 0.5 * e.sliding(-0.4), 1e-15);
-  EXPECT_EQ(none.sliding(-0.4), 0.0);
 }
 
 TEST(EffectSet, DetentShapeBecomesTheDetentsHarmonics) {

@@ -151,9 +151,16 @@ TEST(EffectTable, ReportedValuesTakeTheTablesNamesInItsOrder) {
   EXPECT_EQ(v[1].first, "period_rad");
   EXPECT_EQ(v[2].first, "cycles_per_rev");
   EXPECT_EQ(v[3].first, "phase_rad");
-  // endstop's damping is the simulator's alone: two values.
-  EXPECT_EQ(reported_values(Effect::Endstop, {0.9, 3.0}).size(), 2u);
-  EXPECT_THROW(reported_values(Effect::Endstop, {0.9, 3.0, 0.0}), std::logic_error);
+  // endstop's damping is the simulator's alone: position, stiffness and
+  // the torque it tops out at.
+  const NamedValues stop = reported_values(Effect::Endstop, {0.9, 3.0, 0.12});
+  ASSERT_EQ(stop.size(), 3u);
+  EXPECT_EQ(stop[2].first, "max_torque_Nm");
+  EXPECT_THROW(reported_values(Effect::Endstop, {0.9, 3.0}), std::logic_error);
+  // Without max_torque_Nm a stop climbs on, as a mechanical one does.
+  EXPECT_EQ(parse_effect_spec("endstop:position_rad=1,stiffness_Nm_per_rad=2").value("max_torque_Nm"), kInf);
+  EXPECT_THROW(parse_effect_spec("endstop:position_rad=1,stiffness_Nm_per_rad=2,max_torque_Nm=0"),
+               std::invalid_argument);
 }
 
 TEST(EffectTable, ASpecGoesToJsonAndBackAndBadJsonNamesTheField) {

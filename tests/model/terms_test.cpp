@@ -119,6 +119,14 @@ TEST(SpringAndWalls, Basics) {
   EXPECT_EQ(w.torque(0.0, 3.0), 0.0);
   EXPECT_DOUBLE_EQ(w.torque(1.1, 2.0), 10.0 * 0.1 + 1.0);
   EXPECT_DOUBLE_EQ(w.torque(-1.2, -2.0), -2.0 - 1.0);
+  // A wall that tops out (a rendered one): its spring holds at ±limit, the
+  // damper still acts on top.
+  Walls<double> level = w;
+  level.limit = 1.5;
+  EXPECT_DOUBLE_EQ(level.torque(1.1, 0.0), 1.0);
+  EXPECT_DOUBLE_EQ(level.torque(1.4, 2.0), 1.5 + 1.0);
+  EXPECT_DOUBLE_EQ(level.torque(-3.0, 0.0), -1.5);
+  EXPECT_EQ(level.torque(0.9, 2.0), 0.0);
 }
 
 TEST(RenderModel, Equation14WithoutStick) {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -101,6 +102,11 @@ TEST(OperatorEffects, EachFoldsWhereItActs) {
   EXPECT_DOUBLE_EQ(k.walls.hi, 0.5);
   EXPECT_DOUBLE_EQ(k.walls.K, 2.0);
   EXPECT_DOUBLE_EQ(k.walls.B, 0.01);
+  EXPECT_EQ(k.walls.limit, std::numeric_limits<double>::infinity()) << "a stop that climbs on";
+  EXPECT_TRUE(check(k).empty());
+  EXPECT_TRUE(apply_to_knob(spec("endstop:position_rad=0.5,stiffness_Nm_per_rad=2,max_torque_Nm=0.12"), k));
+  EXPECT_DOUBLE_EQ(k.walls.limit, 0.12);
+  EXPECT_DOUBLE_EQ(k.walls.torque(0.9, 0.0), 0.12) << "a wall that tops out";
   EXPECT_TRUE(check(k).empty());
   for (const char* rig : {"compliance:stiffness_Nm_per_rad=5", "time_delay:delay_s=0.001", "saturation:limit_Nm=0.01"}) {
     EXPECT_FALSE(apply_to_knob(spec(rig), k)) << rig;

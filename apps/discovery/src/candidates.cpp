@@ -407,24 +407,63 @@ std::optional<ExtendedModel> fit_candidate(EffectId id, const ExtendedModel& m,
     case EffectId::Hysteresis:
       return grid_search(id, {1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2}, m, d, train);
     case EffectId::Endstop: {
-      // A stop engages only at the extremes of the travel: its position on a
-      // grid of |θ| quantiles, its stiffness from the residual beyond it.
+      // A stop engages only at the extremes of the travel. Its position on a
+      // fine grid over the outer |θ| (a bin under 1 % of that span), and at
+      // each the stiffness by regression on the depth beyond it, in two
+      // forms: a mechanical stop climbs on, K·depth; a rendered wall tops
+      // out, K·min(depth, w) with its ramp's width w = T/K on a grid too.
+      // The best of each is fitted fully; the one that tops out has a
+      // parameter more and must lower the training RMS by the margin a
+      // richer form must win by (kRicherFormMargin), and the BIC, as a
+      // spring's cubic term must.
+      if (m.flat().size() + 2 > static_cast<std::size_t>(kMaxParams)) return std::nullopt;  // no room
       std::vector<double> mag;
       for (const std::size_t i : train) mag.push_back(std::abs(d.theta[i]));
-      std::optional<ExtendedModel> best;
-      double best_rmse = 0.0;
-      for (const double q : {0.8, 0.9, 0.95, 0.98}) {
-        const double at = model::quantile(mag, q);
-        const auto b = regress({column(train, [&](std::size_t i) {
-                                 const double th = d.theta[i];
-                                 return th > at ? th - at : th < -at ? th + at : 0.0;
-                               })},
-                               r);
-        ExtendedModel e = with(m, {id, {std::max(b[0], 0.0)}, at});
-        const FitReport rep = fit_extended(e, d, train, 6);
-        if (!best || rep.rmse < best_rmse) best = std::move(e), best_rmse = rep.rmse;
+      const double from = model::quantile(mag, 0.2), to = model::quantile(mag, 0.995);
+      const double deepest = *std::max_element(mag.begin(), mag.end());
+      if (!(to > from)) return std::nullopt;
+      struct Start {
+        double sse = std::numeric_limits<double>::infinity(), at = 0.0, K = 0.0, width = 0.0;
+      };
+      Start climbing, topping;
+      constexpr int kSteps = 120;
+      for (int k = 0; k <= kSteps; ++k) {
+        const double at = from + (to - from) * k / kSteps;
+        for (const double share : {0.0, 0.05, 0.1, 0.2, 0.35, 0.5, 0.7}) {
+          // share 0: the stop climbs on; else its ramp ends that share of
+          // the way to the deepest point.
+          const double width = share > 0 ? share * (deepest - at) : std::numeric_limits<double>::infinity();
+          double sxx = 0.0, sxr = 0.0, srr = 0.0;
+          for (std::size_t j = 0; j < train.size(); ++j) {
+            const double th = d.theta[train[j]];
+            const double x = std::abs(th) > at ? std::copysign(std::min(std::abs(th) - at, width), th) : 0.0;
+            sxx += x * x, sxr += x * r[j], srr += r[j] * r[j];
+          }
+          if (!(sxx > 0.0) || !(sxr > 0.0)) continue;  // nothing beyond, or a stop that pushes outwards
+          const double sse = srr - sxr * sxr / sxx;
+          Start& best = share > 0 ? topping : climbing;
+          if (sse < best.sse) best = {sse, at, sxr / sxx, width};
+        }
       }
-      c = std::move(best);
+      const double n = static_cast<double>(train.size());
+      const auto fitted = [&](const Start& s, bool tops_out, double& rmse, double& bic) -> std::optional<ExtendedModel> {
+        if (!std::isfinite(s.sse)) return std::nullopt;
+        std::vector<double> q{s.K};
+        if (tops_out) q.push_back(s.K * s.width);
+        ExtendedModel e = with(m, {id, std::move(q), s.at});
+        rmse = fit_extended(e, d, train, 40).rmse;
+        const std::vector<bool> free = e.free_mask();
+        const auto k = static_cast<double>(std::count(free.begin(), free.end(), true));
+        bic = n * std::log(std::max(rmse * rmse, 1e-300)) + k * std::log(n);
+        return e;
+      };
+      double rmse_climbing = 0.0, bic_climbing = 0.0, rmse_topping = 0.0, bic_topping = 0.0;
+      std::optional<ExtendedModel> a = fitted(climbing, false, rmse_climbing, bic_climbing);
+      std::optional<ExtendedModel> b = fitted(topping, true, rmse_topping, bic_topping);
+      const bool tops_out =
+          b && (!a || (bic_topping < bic_climbing && rmse_topping < (1.0 - kRicherFormMargin) * rmse_climbing));
+      c = tops_out ? std::move(b) : std::move(a);
+      if (!c) return std::nullopt;
       break;
     }
     default: return std::nullopt;
@@ -501,7 +540,12 @@ Params report_params(const ActiveEffect& e, const ExtendedModel& m) {
     case EffectId::Saturation:
     case EffectId::Backlash:
     case EffectId::Hysteresis: return named({e.setting});
-    case EffectId::Endstop: return named({e.setting, q[0]});
+    case EffectId::Endstop: {
+      // A stop that climbs on has no max_torque_Nm.
+      Params v = named({e.setting, q[0], q.size() > 1 ? q[1] : std::numeric_limits<double>::quiet_NaN()});
+      std::erase_if(v, [](const auto& kv) { return std::isnan(kv.second); });
+      return v;
+    }
     case EffectId::Compliance: {
       // The ringing against the knob's inertia as this model fits it.
       const double M = std::abs(m.base[model::kM_acc]);
@@ -656,10 +700,15 @@ Explanation explain(const ActiveEffect& e, const ExtendedModel& m, const Motion&
       return {"after reversals", "After a reversal friction turns over within about " + within +
                                      " instead of jumping: presliding hysteresis (Dahl)."};
     }
-    case EffectId::Endstop:
-      return {"at the extremes of the travel",
-              "Beyond ±" + u.position.with(v("position_rad")) + " the " + effort + " climbs by " +
-                  u.stiffness.with(v("stiffness_Nm_per_rad")) + ": a hard stop (endstop)."};
+    case EffectId::Endstop: {
+      const std::string beyond = "Beyond ±" + u.position.with(v("position_rad")) + " the " + effort + " climbs by " +
+                                 u.stiffness.with(v("stiffness_Nm_per_rad"));
+      if (e.params.size() > 1)
+        return {"at the extremes of the travel",
+                beyond + " up to " + force(v("max_torque_Nm")) +
+                    " and holds there: a stop that tops out, as a rendered wall does (endstop)."};
+      return {"at the extremes of the travel", beyond + ": a hard stop (endstop)."};
+    }
     case EffectId::Compliance: {
       // A damping ratio of 1 or more does not ring: the twist follows the
       // torque through its lag c/k, whose corner is k/(2π·c).

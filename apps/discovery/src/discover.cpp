@@ -6,6 +6,7 @@
 #include <map>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <cstdio>
 #include <span>
 #include <string>
@@ -387,6 +388,75 @@ void append_trace(ResidualTrace& tr, const fit::FitData& d, std::span<const std:
   }
 }
 
+// What outbid the detents in the base's first search: a trend over
+// position that the base then goes without. The structure among the pool's
+// spring, gravity and end stops that explains it best on the training rows
+// (fitted with the base less its detents), and the torque that structure
+// alone puts on a row, moving or not: the walls of a rendered knob (120
+// mN·m against 10 mN·m detents) outbid its detents at every frequency their
+// steps reach, so the detents are searched for with it taken out, and only
+// where it does not act when that leaves enough rows.
+class Trend {
+ public:
+  explicit Trend(ExtendedModel with) : with_(std::move(with)) {
+    ExtendedModel without = with_;
+    without.effects.pop_back();
+    with_layout_ = detail::layout_of(with_), without_layout_ = detail::layout_of(without);
+    with_params_ = with_.flat(), without_params_ = without.flat();
+  }
+  // The structure's torque on row i of d: the model with it less the same
+  // model (its base as fitted with it) without it.
+  double torque(const fit::FitData& d, std::size_t i) const {
+    const auto base = model::ThesisModel<double>::from_params(with_params_.data());
+    detail::RowInputs in;
+    in.theta = d.theta[i];
+    in.omega = d.omega[i];
+    in.alpha = d.alpha[i];
+    return detail::extended_torque(with_layout_, with_params_.data(), base, in) -
+           detail::extended_torque(without_layout_, without_params_.data(), base, in);
+  }
+  // d with the structure's torque taken out of every row's.
+  fit::FitData taken_out_of(const fit::FitData& d) const {
+    fit::FitData out = d;
+    for (std::size_t i = 0; i < d.size(); ++i) out.torque[i] -= torque(d, i);
+    return out;
+  }
+
+ private:
+  ExtendedModel with_;
+  detail::Layout with_layout_, without_layout_;
+  std::vector<double> with_params_, without_params_;
+};
+
+std::optional<Trend> trend_of(const fit::FitResult& f, const fit::FitData& d, std::span<const std::size_t> train,
+                              const std::vector<EffectId>& pool, double slow) {
+  ExtendedModel m;
+  m.base = f.params;
+  m.base_fitted = f.fitted;
+  for (const std::size_t k : {model::kA_pos, model::kP_pos, model::kS_pos}) m.base_fitted[k] = false;
+  m.base[model::kA_pos] = 0.0;
+  m.stick_speed = slow;
+  detail::fit_extended(m, d, train);
+  std::vector<double> r = detail::residuals(m, d, train);
+  for (double& v : r) v = std::isnan(v) ? 0.0 : v;
+  std::optional<Trend> best;
+  double best_rmse = 0.0;
+  for (const EffectId id : {EffectId::Spring, EffectId::Gravity, EffectId::Endstop}) {
+    if (std::find(pool.begin(), pool.end(), id) == pool.end()) continue;
+    for (ExtendedModel& c : detail::candidate_forms(id, m, d, train, r)) {
+      double ss = 0.0, n = 0.0;
+      for (const double v : detail::residuals(c, d, train))
+        if (!std::isnan(v)) ss += v * v, n += 1.0;
+      if (!(n > 0.0)) continue;
+      const double rmse = std::sqrt(ss / n);
+      if (best && !(rmse < best_rmse)) continue;
+      best.emplace(std::move(c));
+      best_rmse = rmse;
+    }
+  }
+  return best;
+}
+
 DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const DiscrepancyOptions& opt) {
   const auto t0 = std::chrono::steady_clock::now();
   if (d.size() < 200 || h.size() < 200) throw fit::FitDataError("too few samples for discrepancy discovery");
@@ -407,8 +477,13 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
   Split s = split_rows(d, all_d, h, all_h, B, opt);
   const auto [lo, hi] = std::minmax_element(d.theta.begin(), d.theta.end());
   std::optional<fit::StickBand> stick;  // the base's Eq. 7 band, carried to the final knob
+  const std::vector<EffectId> pool = opt.effects.empty() ? implemented_effects(d.axis) : opt.effects;
   ExtendedModel m;
   double slow = 0.0;
+  // A trend that outbid the detents, and the detents then found without it
+  // (only where it does not act: detents_between).
+  std::optional<Trend> trend;
+  bool detents_between = false;
   if (opt.base_model) {
     // The given model's terms, held as given (or refitted from them).
     m = detail::extended_of(*opt.base_model);
@@ -437,7 +512,25 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
       fit::FitOptions above = base_options;
       above.min_detents_per_rev = std::max(1.5, 2.0 * 2 * std::numbers::pi / std::max(range, 1e-9)) * 1.01;
       if (above.min_detents_per_rev < above.max_detents_per_rev) {
-        fit::FitResult again = fit::fit_knob(subset(d, s.train), above);
+        std::vector<std::size_t> rows = s.train;
+        trend = trend_of(base_fit, d, s.train, pool, slow_speed(d, base_fit.stick));
+        if (trend) {
+          // Where the structure does not act (under a tenth of its largest
+          // torque), when that is a quarter of the rows or more: end stops
+          // leave the travel between them; a spring or gravity acts
+          // everywhere.
+          std::vector<double> size;
+          for (const std::size_t i : s.train) size.push_back(std::abs(trend->torque(d, i)));
+          const double peak = model::quantile(size, 0.99);
+          std::vector<std::size_t> quiet;
+          for (std::size_t j = 0; j < s.train.size(); ++j)
+            if (size[j] <= 0.1 * peak) quiet.push_back(s.train[j]);
+          if (quiet.size() >= s.train.size() / 4 && quiet.size() < s.train.size()) {
+            rows = std::move(quiet);
+            detents_between = true;
+          }
+        }
+        fit::FitResult again = fit::fit_knob(subset(trend ? trend->taken_out_of(d) : d, rows), above);
         if (!slow_trend(again)) base_fit = std::move(again);
       }
     }
@@ -458,6 +551,14 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
     if (slow_trend(base_fit)) {
       for (const std::size_t k : {model::kA_pos, model::kP_pos, model::kS_pos}) m.base_fitted[k] = false;
       m.base[model::kA_pos] = 0.0;
+      trend.reset();  // no detents found without it either
+      detents_between = false;
+    } else if (detents_between) {
+      // The detents as the search found them where the trend does not act,
+      // held: Eq. 6's detent term runs on over the whole travel, and fitted
+      // over the rows where the trend acts (a rendered knob's walls, where
+      // its detents end) it would be pulled off the detents.
+      for (const std::size_t k : {model::kA_pos, model::kP_pos, model::kS_pos}) m.base_fitted[k] = false;
     }
   }
   out.base_given = opt.base_model.has_value();
@@ -472,7 +573,10 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
                                       " rows inside the training's velocity range; it needs 100"
                                 : "too few moving samples for held-out blocks");
   }
-  detail::fit_extended(m, d, s.train);
+  // The base is refined per sample as the detents were found: with the
+  // trend taken out, which it still goes without (a term it lacks would
+  // otherwise pull its detents' period towards the trend's steps).
+  detail::fit_extended(m, trend ? trend->taken_out_of(d) : d, s.train);
   opt.hooks.check();
   const ExtendedModel base_model = m;
   const Residuals base_res = residuals_of(m, s);
@@ -490,7 +594,6 @@ DiscrepancyResult run(const fit::FitData& d, const fit::FitData& h, const Discre
   // one that turns back by more than 1 % of its range.
   const bool reverses = detail::count_reversals(d.theta, 0.01 * (*hi - *lo)) > 0;
 
-  const std::vector<EffectId> pool = opt.effects.empty() ? implemented_effects(d.axis) : opt.effects;
   for (int round = 0; out.findings.size() < opt.max_findings; ++round) {
     // Rows the model does not describe add nothing to a candidate's start.
     std::vector<double> r_train = current_res.train;

@@ -60,7 +60,7 @@ Layout layout_of(const ExtendedModel& m) {
   Layout L;
   int at = static_cast<int>(m.base.size());
   for (const ActiveEffect& e : m.effects) {
-    L.effects.push_back({e.id, {}, e.setting});
+    L.effects.push_back({e.id, std::vector<double>(e.params.size(), 0.0), e.setting});
     L.offset.push_back(at);
     at += static_cast<int>(e.params.size());
   }

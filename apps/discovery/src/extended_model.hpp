@@ -119,7 +119,7 @@ std::vector<RowInputs> row_inputs(const fit::FitData& d, std::span<const std::si
 
 // Where each effect's parameters sit in the flat vector.
 struct Layout {
-  std::vector<ActiveEffect> effects;  // settings; params ignored
+  std::vector<ActiveEffect> effects;  // settings; params zero, their count the effect's form
   std::vector<int> offset;            // per effect
   bool base_detents = true;
   double t_mid = 0.0;                 // drift's reference time
@@ -195,6 +195,7 @@ T extended_torque(const Layout& L, const T* p, const model::ThesisModel<T>& base
           w.lo = T(-L.effects[e].setting);
           w.hi = T(L.effects[e].setting);
           w.K = q[0];
+          if (L.effects[e].params.size() > 1) w.limit = q[1];  // the saturating form
           tau += w.torque(theta, omega);
           break;
         }

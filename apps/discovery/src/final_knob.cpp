@@ -108,6 +108,7 @@ ExtendedModel extended_of(const FinalKnob& k) {
       case EffectId::Hysteresis: e.setting = v("presliding_angle_rad"); break;
       case EffectId::Endstop:
         e.params = {v("stiffness_Nm_per_rad")};
+        if (std::isfinite(v("max_torque_Nm"))) e.params.push_back(v("max_torque_Nm"));  // a wall that tops out
         e.setting = v("position_rad");
         break;
       case EffectId::Compliance: {

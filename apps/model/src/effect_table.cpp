@@ -119,6 +119,9 @@ constexpr EffectParam kEndstop[] = {
      .lo_open = true},
     {.name = "damping_Nm_s_per_rad", .unit = "N·m·s/rad", .meaning = "B while in a stop", .lo = 0.0,
      .why = "dissipative", .reported = false},
+    {.name = "max_torque_Nm", .unit = "N·m",
+     .meaning = "T, where a stop's torque tops out (a rendered wall's plateau; not given: it climbs on, a mechanical stop)",
+     .lo = 0.0, .lo_open = true, .fallback = kInf},
 };
 
 constexpr EffectParam kCompliance[] = {
@@ -162,7 +165,7 @@ constexpr EffectRow kTable[] = {
     {Effect::Hysteresis, "hysteresis", "presliding friction (Dahl): friction turns over instead of jumping",
      "C·z, dz/dθ = (1 − z·sgn θ̇)/θ_p", Acts::KnobStructure, kHysteresis},
     {Effect::Endstop, "endstop", "hard stops at the ends of the travel",
-     "K·(θ ∓ position) + B·θ̇ beyond ±position", Acts::KnobStructure, kEndstop},
+     "K·(θ ∓ position), at most ±T, + B·θ̇ beyond ±position", Acts::KnobStructure, kEndstop},
     {Effect::Compliance, "compliance", "a softer coupling between actuator and knob (gripper)",
      "the knob lags the motor by the twist e, k·e + c·ė = τ", Acts::Coupling, kCompliance},
 };

@@ -24,8 +24,8 @@ std::string_view check(const KnobParams& k) {
     if (!std::isfinite(d.a[i]) || !std::isfinite(d.b[i])) return "detent harmonics must be finite";
   if (!finite_nonneg(k.spring.K) || !finite_nonneg(k.spring.K3) || !std::isfinite(k.spring.theta0))
     return "spring K, K3 must be >= 0 (restoring)";
-  if (!finite_nonneg(k.walls.K) || !finite_nonneg(k.walls.B) || !(k.walls.lo <= k.walls.hi))
-    return "walls need K, B >= 0 and lo <= hi";
+  if (!finite_nonneg(k.walls.K) || !finite_nonneg(k.walls.B) || !(k.walls.lo <= k.walls.hi) || !(k.walls.limit > 0.0))
+    return "walls need K, B >= 0, lo <= hi and a limit > 0 (∞: none)";
   if (!finite_nonneg(k.backlash) || k.backlash > 0.5) return "backlash must be 0 … 0.5 rad";
   if (!finite_nonneg(k.presliding) || k.presliding > 0.1) return "presliding angle must be 0 … 0.1 rad";
   return {};

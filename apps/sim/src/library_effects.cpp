@@ -54,6 +54,7 @@ bool apply_to_knob(const EffectSpec& s, KnobParams& knob) {
       knob.walls.hi = s.value("position_rad");
       knob.walls.K = s.value("stiffness_Nm_per_rad");
       knob.walls.B = s.value("damping_Nm_s_per_rad");
+      knob.walls.limit = s.value("max_torque_Nm");  // ∞ when not given: a mechanical stop
       return true;
     case Effect::DetentShape:
       for (std::size_t k = 2; k <= 4; ++k) {

@@ -18,6 +18,7 @@
 
 #include <array>
 #include <cstddef>
+#include <limits>
 
 #include "knoblab/model/effects.hpp"
 #include "knoblab/model/terms.hpp"
@@ -74,6 +75,7 @@ struct EffectSet {
     s.damping.c *= g;
     s.walls.K *= g;
     s.walls.B *= g;
+    if (s.walls.limit < T(std::numeric_limits<double>::infinity())) s.walls.limit *= g;  // ∞: no limit
     return s;
   }
 };

@@ -13,6 +13,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 
 namespace knoblab::model {
 
@@ -145,14 +146,24 @@ struct Spring {
 
 // Walls: stiff spring and damper beyond [lo, hi], nothing inside.
 // The damper only acts while penetrating, so leaving a wall is not sticky.
+// The spring's torque tops out at ±limit (N·m): a rendered wall holds at
+// the torque its designer (or the motor's limit) gives it rather than
+// climbing on as a mechanical stop does (limit ∞, the default).
 template <typename T>
 struct Walls {
   T lo{-1e9}, hi{1e9};  // rad
   T K{}, B{};           // N·m/rad, N·m·s/rad
+  T limit{std::numeric_limits<double>::infinity()};  // N·m
   bool operator==(const Walls&) const = default;
   T torque(const T& theta, const T& omega) const {
-    if (theta > hi) return K * (theta - hi) + B * omega;
-    if (theta < lo) return K * (theta - lo) + B * omega;
+    if (theta > hi) {
+      const T spring = K * (theta - hi);
+      return (spring > limit ? limit : spring) + B * omega;
+    }
+    if (theta < lo) {
+      const T spring = K * (theta - lo);
+      return (spring < -limit ? -limit : spring) + B * omega;
+    }
     return T(0);
   }
 };
