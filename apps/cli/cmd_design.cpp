@@ -21,7 +21,7 @@ namespace knoblab::cli {
 const CommandSpec kDesignSpec{
     "design",
     "check DESIGN.json | export DESIGN.json --out MODEL.json | import MODEL.json --out DESIGN.json [--name NAME] |\n"
-    "       render DESIGN.json --out CAPTURE.csv [--seconds S] [--rate HZ] [--knob PRESET]",
+    "       render DESIGN.json --out CAPTURE.csv [--seconds S] [--rate HZ] [--knob PRESET] [--torque sensor|knob]",
     "Check, export, import and play Haptic Icon Prototyper designs.\n"
     "check: reads the design (errors name the key) and says what it holds and whether\n"
     "hapticd would play it, or why not (exit 1).\n"
@@ -31,17 +31,23 @@ const CommandSpec kDesignSpec{
     "render: plays the design in hapticd's core on the sim backend, in simulated time,\n"
     "while a simulated hand turns the knob slowly from 0 to one end of the design's\n"
     "range, across to the other and back, and writes every cycle as a capture CSV\n"
-    "(docs/interchange.md) that knoblab import, fit and discrepancy take.",
+    "(docs/interchange.md) that knoblab import, fit and discrepancy take; with --torque knob\n"
+    "its torque is the one it takes to turn the knob, the sign they read a knob's torque in.",
     {{"out", true, "the file to write", "FILE"},
      {"name", true, "import: the design's name (default: the file's stem)"},
      {"seconds", true, "render: how long the hand turns the knob (default 20)"},
      {"rate", true, "render: the loop rate in Hz (default 10000)"},
-     {"knob", true, "render: the sim preset on the motor (default study3-not-rendered, the haptic knob itself)"}},
+     {"knob", true, "render: the sim preset on the motor (default study3-not-rendered, the haptic knob itself)"},
+     {"torque", true,
+      "render: sensor (default: the torque sensor's reading, the motor's push on the knob, as hapticd records it) "
+      "or knob (the torque it takes to turn the knob: the sensor's negated, as fit and discrepancy read it)",
+      "sensor|knob"}},
     2, 2, false,
     {"knoblab design check examples/designs/fan-knob.json",
      "knoblab design export examples/designs/fan-knob.json --out fan-knob.tiles.json",
      "knoblab design import fan-knob.tiles.json --out fan-knob-again.json --name \"fan knob\"",
-     "knoblab design render examples/designs/fan-knob.json --seconds 20 --out fan-knob.csv"}};
+     "knoblab design render examples/designs/fan-knob.json --seconds 20 --out fan-knob.csv",
+     "knoblab design render examples/designs/fan-knob.json --seconds 8 --torque knob --out fan-knob.knob.csv"}};
 
 namespace {
 
@@ -96,6 +102,10 @@ int render(const Args& args, const std::string& path) {
   request.seconds = args.number("seconds", request.seconds);
   request.rate_hz = args.number("rate", request.rate_hz);
   request.knob = args.get("knob").value_or(request.knob);
+  if (const auto torque = args.get("torque")) {
+    if (*torque == "knob") request.torque = RenderedTorque::Knob;
+    else if (*torque != "sensor") throw UsageError("--torque must be sensor or knob, not '" + *torque + "'");
+  }
   const DesignRenderResult r = render_design(request);
   interchange::write_csv(r.capture, std::filesystem::path(args.require("out")));
   std::cout << std::format("wrote {}: {} samples, the knob turned across {:.1f}° … {:.1f}° and back\n",

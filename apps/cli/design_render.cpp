@@ -125,7 +125,7 @@ DesignRenderResult render_design(const DesignRenderRequest& r) {
     c.theta.push_back(rec.sample.theta);
     c.omega.push_back(rec.sample.omega);
     c.alpha.push_back(rec.sample.alpha);
-    c.torque.push_back(rec.sample.torque);
+    c.torque.push_back(r.torque == RenderedTorque::Knob ? -rec.sample.torque : rec.sample.torque);
     c.command.push_back(rec.sample.command);
     c.flags.push_back(rec.sample.flags);
   }
@@ -134,6 +134,9 @@ DesignRenderResult render_design(const DesignRenderRequest& r) {
                 {"design", r.design.name},
                 {"knob", r.knob},
                 {"rate_hz", std::format("{}", r.rate_hz)},
+                {"torque", r.torque == RenderedTorque::Knob
+                               ? "knob: the torque it takes to turn the knob, the torque sensor's reading negated"
+                               : "sensor: the torque sensor's reading, the motor's push on the knob"},
                 {"hand", std::format("turned across {:.4g}…{:.4g} rad and back in {} s, grip {} N·m/rad, {} N·m·s/rad",
                                      out.range_from, out.range_to, r.seconds, r.grip_stiffness, r.grip_damping)}};
   return out;

@@ -14,6 +14,17 @@
 
 namespace knoblab::cli {
 
+// What the capture's torque column holds.
+enum class RenderedTorque {
+  // The torque sensor's reading, as hapticd records it: the motor's push on
+  // the knob, the opposite of the torque the design resists with.
+  Sensor,
+  // The torque it takes to turn the knob (the sensor's reading negated):
+  // Eq. 6's sign, as a Haptic Camera turning the rendered knob records it,
+  // and what knoblab fit and discrepancy read a knob's torque as.
+  Knob,
+};
+
 struct DesignRenderRequest {
   design::Design design;
   double seconds = 20.0;
@@ -23,6 +34,7 @@ struct DesignRenderRequest {
   // A light grip (the sim backend's default hand, docs/hal.md).
   double grip_stiffness = 1.0;   // N·m/rad
   double grip_damping = 0.01;    // N·m·s/rad
+  RenderedTorque torque = RenderedTorque::Sensor;
 };
 
 struct DesignRenderResult {

@@ -137,6 +137,53 @@ TEST(DesignCli, TheFanKnobPlayedOnTheSimulatedKnobShowsFourDetentsAndBothWallsIn
             11.0);
 }
 
+// The fan knob rendered, then read back as knoblab discrepancy reads any
+// knob: Eq. 6 (inertia, friction, detents) and what it lacks. The torque it
+// takes to turn the rendered knob (--torque knob) is what Eq. 6 describes;
+// the walls' 120 mN·m outbid the detents' 10 mN·m in the base's first search
+// (a once-per-revolution "detent" of 96 mN·m), so the detents are found
+// between the walls with the walls taken out, and the walls come back as an
+// end stop that tops out, as the wall template does.
+TEST(DesignCli, AFitOfTheFanKnobsRecordingFindsItsFourDetentsAndBothWalls) {
+  ScratchDir dir;
+  const auto csv = (dir / "fan.csv").string(), out = (dir / "fan.json").string();
+  const RunResult r = run_knoblab(
+      {"design", "render", kFanKnob, "--seconds", "4", "--rate", "5000", "--torque", "knob", "--out", csv});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const RunResult fit = run_knoblab({"discrepancy", csv, "--json", out});
+  ASSERT_EQ(fit.exit_code, 0) << fit.err;
+  const nlohmann::json j = nlohmann::json::parse(read_file(out));
+  const nlohmann::json& p = j.at("final").at("params");
+
+  // The detents: 12 per revolution at the template's 10 mN·m, A·sin(θ/P + S).
+  const double A = p.at("A_pos").get<double>(), P = p.at("P_pos").get<double>(), S = p.at("S_pos").get<double>();
+  EXPECT_NEAR(1.0 / P, 12.0, 0.2) << "detents per revolution\n" << j.dump(1);
+  EXPECT_NEAR(std::abs(A), 0.010, 0.003) << "N·m";
+  // Each rests where the torque rises through zero: near Off, Lo, Med and
+  // Hi, and nowhere else between the walls.
+  std::vector<double> rests;
+  const auto tau = [&](double th) { return A * std::sin(th / P + S); };
+  for (double th = -60 * kDeg; th < 60 * kDeg; th += 0.1 * kDeg)
+    if (tau(th) < 0 && tau(th + 0.1 * kDeg) >= 0) rests.push_back(th + 0.05 * kDeg);
+  ASSERT_EQ(rests.size(), 4u) << ::testing::PrintToString(rests);
+  const double settings[] = {-45, -15, 15, 45};
+  for (std::size_t i = 0; i < 4; ++i) EXPECT_NEAR(rests[i] / kDeg, settings[i], 3.0) << i;
+
+  // The walls: an end stop at ±60°, both ways, that tops out near the
+  // template's 120 mN·m, and the held-out error it takes away.
+  const nlohmann::json* stop = nullptr;
+  for (const nlohmann::json& f : j.at("findings"))
+    if (f.at("effect") == "endstop") stop = &f;
+  ASSERT_NE(stop, nullptr) << j.dump(1);
+  const nlohmann::json& q = stop->at("params");
+  EXPECT_NEAR(q.at("position_rad").get<double>() / kDeg, 60.0, 3.0);
+  EXPECT_GT(q.at("stiffness_Nm_per_rad").get<double>(), 0.4);
+  ASSERT_TRUE(q.contains("max_torque_Nm")) << q.dump();
+  EXPECT_NEAR(q.at("max_torque_Nm").get<double>(), 0.120, 0.015);
+  EXPECT_LT(stop->at("heldout_rmse_after_Nm").get<double>(), 0.2 * stop->at("heldout_rmse_before_Nm").get<double>());
+  EXPECT_LT(j.at("final").at("heldout_rmse_Nm").get<double>(), 0.010) << "N·m";
+}
+
 // A spring through 0 of stiffness K over ±0.12 N·m: the stiffest thing a
 // design holds, so the one the loop's stable region bounds.
 std::string spring_design(const ScratchDir& dir, const std::string& name, double K) {
