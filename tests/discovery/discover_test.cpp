@@ -213,8 +213,11 @@ TEST(Discover, NamesAWallThatTopsOutAndTheTorqueItHolds) {
   EXPECT_NE(f.explanation.find("holds there"), std::string::npos) << f.explanation;
   EXPECT_LT(f.heldout_rmse_after_Nm, 0.8 * f.heldout_rmse_before_Nm);
   // The knob's own detents (5 per revolution) are not taken for anything else.
-  for (const auto& [name, value] : r.final_model.params)
-    if (name == "P_pos") EXPECT_NEAR(1.0 / std::abs(value), 5.0, 0.1) << to_json(r);
+  for (const auto& [name, value] : r.final_model.params) {
+    if (name == "P_pos") {
+      EXPECT_NEAR(1.0 / std::abs(value), 5.0, 0.1) << to_json(r);
+    }
+  }
 }
 
 }  // namespace
