@@ -16,6 +16,7 @@
 #include "knoblab/hapticd/recorder.hpp"
 #include "knoblab/store/store.hpp"
 
+#include "held_commit.hpp"
 #include "temp_db.hpp"
 
 namespace knoblab::hapticd {
@@ -24,6 +25,7 @@ namespace {
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
+using testing::HeldCommit;
 using testing::TempDb;
 
 store::NewCapture defaults() {
@@ -156,16 +158,8 @@ TEST(Recorder, AStoreThatFellBehindCatchesUpInOneCommitPerBatch) {
 TEST(Recorder, TakingRecordsNeverWaitsForACommitInProgress) {
   TempDb db{"recorder"};
   store::Store s = store::Store::open(db.path());
-  std::promise<void> release;
-  const std::shared_future<void> released = release.get_future().share();
-  std::promise<void> entered;
-  std::atomic<bool> first{true};
-  RecorderOptions options;
-  options.on_commit = [&](std::int64_t) {
-    if (first.exchange(false)) entered.set_value();
-    released.wait();
-  };
-  Recorder rec(&s, defaults(), options);
+  HeldCommit disk;
+  Recorder rec(&s, defaults(), disk.options());
   for (std::uint64_t seq = 0; seq < 3000; ++seq) rec.take(record(seq, 1));
   std::thread store_thread([&] {
     while (!rec.idle()) {
@@ -173,8 +167,7 @@ TEST(Recorder, TakingRecordsNeverWaitsForACommitInProgress) {
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
   });
-  const bool in_commit =
-      entered.get_future().wait_for(std::chrono::seconds(30)) == std::future_status::ready;
+  const bool in_commit = disk.wait_entered(std::chrono::seconds(30));
   auto taker = std::async(std::launch::async, [&] {
     for (std::uint64_t seq = 3000; seq < 23000; ++seq) rec.take(record(seq, 1));
     rec.take(record(23000, 0));
@@ -182,7 +175,7 @@ TEST(Recorder, TakingRecordsNeverWaitsForACommitInProgress) {
   });
   const bool took = taker.wait_for(std::chrono::seconds(30)) == std::future_status::ready;
   const RecorderStats during = rec.stats();
-  release.set_value();
+  disk.release();
   taker.get();
   store_thread.join();
 

@@ -22,6 +22,7 @@
 #include "knoblab/sim/presets.hpp"
 #include "knoblab/store/store.hpp"
 #include "shared_host.hpp"
+#include "held_commit.hpp"
 #include "temp_db.hpp"
 
 namespace knoblab::hapticd {
@@ -30,6 +31,7 @@ namespace {
 using ::testing::StartsWith;
 using Clock = std::chrono::steady_clock;
 
+using testing::HeldCommit;
 using testing::TempDb;
 
 // The daemon at 10 kHz on the sim backend, its loop on a thread.
@@ -141,26 +143,17 @@ TEST(DaemonStore, EverySampleIsKeptWhileAnotherWriterHoldsTheStoreLongerThanTheB
 TEST(DaemonStore, TelemetryFlowsAndTheRingDrainsWhileACommitWaitsForTheDisk) {
   TempDb db{"contention"};
   { store::Store::open(db.path()); }
-  std::promise<void> release;
-  const std::shared_future<void> released = release.get_future().share();
-  std::promise<void> entered;
-  std::atomic<bool> first{true};
-  RecorderOptions slow_disk;
-  slow_disk.on_commit = [&](std::int64_t) {
-    if (first.exchange(false)) entered.set_value();
-    released.wait();
-  };
+  HeldCommit disk;
   const std::string shm = "/knoblab-store-test-" + std::to_string(::getpid());
   std::vector<FinishedRecording> f;
   double telemetry_during_commit_s = 0.0;
   std::uint64_t dropped = 0;
   {
-    Rig rig(db.path(), slow_disk, shm);
+    Rig rig(db.path(), disk.options(), shm);
     capture::CaptureConfig cc;
     std::string why;
     ASSERT_TRUE(rig.daemon->start_capture(cc, 2.0, "moderate-detents", why)) << why;
-    const bool in_commit =
-        entered.get_future().wait_for(std::chrono::seconds(30)) == std::future_status::ready;
+    const bool in_commit = disk.wait_entered(std::chrono::seconds(30));
     // One second of the loop's telemetry, read while the commit is held.
     control::TelemetryReader reader(shm);
     std::vector<control::TelemetryRecord> buf(256);
@@ -175,7 +168,7 @@ TEST(DaemonStore, TelemetryFlowsAndTheRingDrainsWhileACommitWaitsForTheDisk) {
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
     const bool still_in_commit = rig.daemon->finished().empty();
-    release.set_value();
+    disk.release();
     EXPECT_TRUE(in_commit) << "the capture was never committed";
     EXPECT_TRUE(still_in_commit);
     f = rig.wait_finished(std::chrono::seconds(30));

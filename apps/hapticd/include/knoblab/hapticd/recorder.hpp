@@ -91,7 +91,6 @@ class Recorder {
   // (the loop refused it) is forgotten once a later recording starts.
   void describe(std::uint32_t recording_id, const store::NewCapture& info,
                 RecordingKind kind = RecordingKind::other);
-  void set_max_buffered(std::size_t samples);
 
   // --- the ring thread ---
   // One record from the ring, in order of LoopRecord::seq: a gap in seq is
@@ -152,6 +151,8 @@ class Recorder {
     double uncommitted_t = 0.0;   // store thread: t of the oldest sample the writer holds uncommitted
   };
 
+  // options_.max_buffered, 0 meaning the default.
+  void set_max_buffered(std::size_t samples);
   // All under mutex_.
   void start(const LoopRecord& r);
   void end_back();
