@@ -644,23 +644,27 @@ def check_amp_comms(con, report, check):
 
 def start_power_cut(con, report):
     """A study session in the background, and what it has committed once two
-    trials are in and the next one's recording has samples in the store:
-    the caller then kills QEMU, mid-trial."""
+    trials are in and the next one's recording has its first seconds in the
+    store: the caller then kills QEMU at once, mid-trial."""
+    # Listed before the session: emulated and busy, a listing takes long
+    # enough for a trial to end, so none is taken between the poll and the cut.
+    rc, listing = con.run(f"knoblab list --db {DB}", timeout=300)
+    report["power_cut"] = {"list_before_session": listing.splitlines()}
     # In a subshell: the driver appends "; echo …" to the line, and "&;" is no shell.
     con.run(f"( nohup {SIMULATE} >/var/lib/knoblab/study-before-cut.log 2>&1 & )")
     cut, deadline = {}, time.monotonic() + 300
     while time.monotonic() < deadline:
         trials = sql(con, TRIALS)
-        rows = sql(con, "SELECT id, (SELECT count(*) FROM samples WHERE capture_id = c.id) AS rows "
+        rows = sql(con, "SELECT id, rate_hz, (SELECT count(*) FROM samples WHERE capture_id = c.id) AS rows "
                         "FROM captures c WHERE status = 'recording'")
-        if len(trials) >= 2 and len(rows) == 1 and rows[0]["rows"] > 0:
-            cut = dict(rows[0], trials=trials)
+        # Within its first 2 s: a list-selection trial records about 6 s, so
+        # the cut falls well before the trial's end.
+        if len(trials) >= 2 and len(rows) == 1 and 0 < rows[0]["rows"] < 2 * rows[0]["rate_hz"]:
+            cut = {"id": rows[0]["id"], "rows": rows[0]["rows"], "trials": trials}
             break
-        time.sleep(2)
-    # Emulated, with the session and the kiosk busy, listing the store takes a while.
-    rc, listing = con.run(f"knoblab list --db {DB}", timeout=300)
-    report["power_cut"] = {"committed_before_cut": {k: v for k, v in cut.items() if k != "trials"},
-                           "trials_before_cut": len(cut.get("trials", [])), "list_before_cut": listing.splitlines()}
+        time.sleep(1)
+    report["power_cut"].update({"committed_before_cut": {k: v for k, v in cut.items() if k != "trials"},
+                                "trials_before_cut": len(cut.get("trials", []))})
     if not cut:  # the session's own words on why it got no further
         rc, log = con.run("tail -n 5 /var/lib/knoblab/study-before-cut.log")
         report["power_cut"]["study_log"] = log.strip().splitlines()
