@@ -56,6 +56,38 @@ TEST(ModelFile, ADiscrepancyModelBecomesLoadModelArgumentsTheSchemaAccepts) {
   EXPECT_FALSE(render_params_problem(p, SafetyLimits{}));
 }
 
+// A design's rendered wall, as discrepancy fits it: a stiff ramp that holds
+// at a torque. hapticd renders it holding there, not climbing on.
+TEST(ModelFile, AWallThatTopsOutIsRenderedHoldingAtItsMaximumTorque) {
+  const json args = load_model_args(
+      model_file({effect("endstop", {{"position_rad", 1.07}, {"stiffness_Nm_per_rad", 1.2}, {"max_torque_Nm", 0.114}})}),
+      "fan.json");
+  const auto problem = control::validate_args(args, control::command_spec(control::Command::load_model).args);
+  EXPECT_FALSE(problem) << problem->key << " " << problem->problem;
+  const RenderParams p = render_params_from_args(args, {}, false);
+  EXPECT_FALSE(render_params_problem(p, SafetyLimits{}));
+  EXPECT_NEAR(p.effects.held(1.07 + 0.05, 0.0), 1.2 * 0.05, 1e-12);  // on the ramp
+  EXPECT_DOUBLE_EQ(p.effects.held(1.07 + 0.5, 0.0), 0.114);          // K·depth would be 0.6 N·m
+  EXPECT_DOUBLE_EQ(p.effects.held(-1.07 - 0.5, 0.0), -0.114);
+  // Without a maximum it is a mechanical stop: it climbs on (the supervisor clips it).
+  const RenderParams stop = render_params_from_args(
+      load_model_args(model_file({effect("endstop", {{"position_rad", 1.07}, {"stiffness_Nm_per_rad", 1.2}})}), "m.json"),
+      {}, false);
+  EXPECT_DOUBLE_EQ(stop.effects.held(1.07 + 0.5, 0.0), 0.6);
+}
+
+TEST(ModelFile, AWallThatTopsOutBeyondTheTorqueLimitIsRefusedNamingItsKey) {
+  const RenderParams p = render_params_from_args(
+      load_model_args(model_file({effect("endstop", {{"position_rad", 1.0}, {"stiffness_Nm_per_rad", 5.0}, {"max_torque_Nm", 0.3}})}),
+                      "m.json"),
+      {}, false);
+  const auto problem = render_params_problem(p, SafetyLimits{});
+  ASSERT_TRUE(problem);
+  EXPECT_EQ(problem->key, "effects.endstop.max_torque_Nm");
+  EXPECT_NE(problem->message.find("300 mN·m is beyond the device's torque limit of 180 mN·m"), std::string::npos)
+      << problem->message;
+}
+
 TEST(ModelFile, EffectsTheRendererCannotRenderAreRefusedEachNamedWithWhy) {
   try {
     load_model_args(model_file({effect("gravity", {{"amplitude_Nm", 0.004}}), effect("backlash", {{"width_rad", 0.003}}),

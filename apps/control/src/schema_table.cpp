@@ -113,6 +113,8 @@ constexpr std::array kEndstopArgs = {
     number("position_rad", kRequired, 0.001, 1000, "rad", "walls at ±position_rad"),
     number("stiffness_Nm_per_rad", kRequired, 0, 100, "N·m/rad", "beyond a wall, τ = stiffness·depth"),
     number("damping_Nm_s_per_rad", kOptional, 0, 1, "N·m·s/rad", "+ damping·θ̇ while inside a wall"),
+    number("max_torque_Nm", kOptional, 0.0001, 0.5, "N·m",
+           "the wall's torque tops out here (a rendered wall's plateau; default: it climbs on)"),
 };
 constexpr ObjectSchema kOffset{kOffsetArgs, {}};
 constexpr ObjectSchema kGravity{kGravityArgs, {}};

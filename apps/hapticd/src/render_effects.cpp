@@ -1,6 +1,7 @@
 #include "knoblab/hapticd/render_effects.hpp"
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -54,7 +55,8 @@ model::EffectSet<double> effects_from_args(const json& a) {
   if (a.contains("endstop")) {
     const json& w = a.at("endstop");
     const double at = get(w, "position_rad", 0.0);
-    e.walls = {-at, at, get(w, "stiffness_Nm_per_rad", 0.0), get(w, "damping_Nm_s_per_rad", 0.0)};
+    e.walls = {-at, at, get(w, "stiffness_Nm_per_rad", 0.0), get(w, "damping_Nm_s_per_rad", 0.0),
+               get(w, "max_torque_Nm", std::numeric_limits<double>::infinity())};
   }
   return e;
 }
@@ -76,6 +78,8 @@ std::optional<ParamProblem> effects_problem(const model::EffectSet<double>& e, c
     if (auto b = beyond("effects.detent_shape.a" + std::to_string(k + 2) + "_Nm", std::hypot(e.detent_a[k], e.detent_b[k])))
       return b;
   if (auto b = beyond("effects.stribeck.static_excess_Nm", e.stribeck.excess)) return b;
+  if (std::isfinite(e.walls.limit))
+    if (auto b = beyond("effects.endstop.max_torque_Nm", e.walls.limit)) return b;
   // The rest grow with the motion; the supervisor's torque limit clips them.
   return std::nullopt;
 }
