@@ -7,10 +7,10 @@
 #include <memory>
 #include <variant>
 
-#include "knoblab/capture/sim_daq.hpp"
 #include "knoblab/design/render_tiles.hpp"
 #include "knoblab/hapticd/core.hpp"
 #include "knoblab/hapticd/render_controller.hpp"
+#include "knoblab/hapticd/sim_time_loop.hpp"
 #include "knoblab/hapticd/supervisor.hpp"
 #include "knoblab/hapticd/tiles_json.hpp"
 #include "knoblab/sim/guided_hand.hpp"
@@ -72,19 +72,15 @@ DesignRenderResult render_design(const DesignRenderRequest& r) {
 
   sim::PlantConfig plant;
   plant.knob = preset->knob;
-  capture::SimDaq daq(plant, r.rate_hz);
+  hapticd::SimTimeLoop loop(plant, r.rate_hz);
   sim::HandChannel hand;
-  daq.plant().add_effect(sim::make_guided_hand(hand));
-  hapticd::CoreConfig cfg;
-  cfg.rate_hz = r.rate_hz;
-  cfg.calibration = daq.calibration();
-  hapticd::HapticCore core(cfg);
-  if (!core.load_tiles(std::move(std::get<std::unique_ptr<hapticd::TileSet>>(parsed))))
+  loop.daq().plant().add_effect(sim::make_guided_hand(hand));
+  if (!loop.core().load_tiles(std::move(std::get<std::unique_ptr<hapticd::TileSet>>(parsed))))
     throw std::runtime_error("hapticd's core did not take the tiles");
   hapticd::CoreCommand mode;
   mode.kind = hapticd::CoreCommand::SetMode;
   mode.mode = hapticd::Mode::Render;
-  if (!core.post(mode)) throw std::runtime_error("hapticd's core did not take render mode");
+  if (!loop.post(mode)) throw std::runtime_error("hapticd's core did not take render mode");
 
   DesignRenderResult out;
   std::tie(out.range_from, out.range_to) = range_of(r.design);
@@ -111,13 +107,7 @@ DesignRenderResult render_design(const DesignRenderRequest& r) {
       ++leg;
       leg_sent = false;
     }
-    capture::DaqInputs in;
-    capture::DaqOutputs o;
-    hapticd::CycleContext ctx;
-    hapticd::LoopRecord rec;
-    ctx.io_ok = daq.read(in) == capture::IoStatus::ok;
-    core.cycle(in, ctx, o, rec);
-    (void)daq.write(o);
+    const hapticd::LoopRecord& rec = loop.step();
     if (rec.faults != 0)
       throw std::runtime_error(std::format("hapticd's core latched a fault ({}) at t = {:.3f} s, θ = {:.1f}°",
                                            hapticd::fault_list(rec.faults), t, rec.sample.theta * 180.0 / std::numbers::pi));

@@ -6,8 +6,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "knoblab/capture/sim_daq.hpp"
-#include "knoblab/hapticd/core.hpp"
+#include "knoblab/hapticd/sim_time_loop.hpp"
 #include "knoblab/interchange/number_text.hpp"
 #include "knoblab/sim/knob.hpp"
 
@@ -156,14 +155,16 @@ SimulationResult simulate(const SimulationRequest& request, store::Store* db) {
   std::vector<const model::EffectSpec*> torques;
   for (const model::EffectSpec* e : rest)
     if (!sim::apply_to_plant(*e, plant)) torques.push_back(e);
-  capture::SimDaq daq(plant, r.rate_hz);
-  for (const model::EffectSpec* e : torques) daq.plant().add_effect(sim::make_knob_effect(*e));
+  // hapticd's cycle, run back to back in simulated time: the same core, modes
+  // and supervisor the realtime daemon runs.
+  hapticd::SimTimeLoop loop(plant, r.rate_hz);
+  for (const model::EffectSpec* e : torques) loop.daq().plant().add_effect(sim::make_knob_effect(*e));
 
   capture::CaptureConfig cfg;
   cfg.rate_hz = r.rate_hz;
   cfg.stimulus = r.stimulus;
   cfg.pid = r.pid;
-  const capture::SensorCalibration calibration = daq.calibration();
+  const capture::SensorCalibration calibration = loop.daq().calibration();
   capture::CaptureController controller(cfg);
 
   const auto cycles = static_cast<std::int64_t>(std::llround(r.seconds * r.rate_hz));
@@ -200,17 +201,11 @@ SimulationResult simulate(const SimulationRequest& request, store::Store* db) {
     writer.emplace(db->begin_capture(info));
   }
 
-  // hapticd's cycle, run back to back in simulated time: the same core, modes
-  // and supervisor the realtime daemon runs.
-  hapticd::CoreConfig core_cfg;
-  core_cfg.rate_hz = r.rate_hz;
-  core_cfg.calibration = calibration;
-  hapticd::HapticCore core(core_cfg);
   hapticd::CoreCommand start;
   start.kind = hapticd::CoreCommand::StartCapture;
   start.capture = controller;
   start.capture_cycles = cycles;
-  core.post(start);
+  loop.post(start);
 
   // The first sample the supervisor held safe (or the e-stop was asserted,
   // or the amplifier was off): the capture is cut there, whatever follows.
@@ -227,14 +222,7 @@ SimulationResult simulate(const SimulationRequest& request, store::Store* db) {
         throw fit::Cancelled();
       }
     }
-    capture::DaqInputs in;
-    capture::DaqOutputs out;
-    hapticd::LoopRecord rec;
-    // The simulated DAQ cannot fail unless a test makes it.
-    hapticd::CycleContext ctx;
-    ctx.io_ok = daq.read(in) == capture::IoStatus::ok;
-    core.cycle(in, ctx, out, rec);
-    (void)daq.write(out);
+    const hapticd::LoopRecord& rec = loop.step();
     if (rec.recording_id == 0) continue;
     const capture::Sample& s = rec.sample;
     if (!cut && ((s.flags & kUnsafe) != 0 || (s.flags & interchange::kAmpEnabled) == 0)) {
@@ -257,7 +245,7 @@ SimulationResult simulate(const SimulationRequest& request, store::Store* db) {
   result.tracking_rms_rad = std::sqrt(sq_err / static_cast<double>(std::max<std::size_t>(cap.size(), 1)));
   if (cut) {
     const std::string why = cut_faults != 0 ? "fault: " + hapticd::fault_list(cut_faults) : "motor not driven";
-    const std::string message = cut_message(r, cap, *cut, cut_faults, cycles, core_cfg.limits, controller);
+    const std::string message = cut_message(r, cap, *cut, cut_faults, cycles, loop.core().config().limits, controller);
     cap.metadata.emplace_back("status", "incomplete");
     cap.metadata.emplace_back("end_reason", why);
     if (writer) {

@@ -3,8 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "knoblab/capture/sim_daq.hpp"
-#include "knoblab/hapticd/core.hpp"
+#include "knoblab/hapticd/sim_time_loop.hpp"
 #include "knoblab/hapticd/supervisor.hpp"
 #include "knoblab/sim/presets.hpp"
 #include "render_terms.hpp"
@@ -12,8 +11,8 @@
 namespace knoblab::studyrun {
 
 struct CoreApparatus::Impl {
-  Impl(const sim::presets::Preset& preset, double rate) : daq(config(preset), rate), core(core_config(daq, rate)) {
-    daq.plant().add_effect(sim::make_guided_hand(hand));
+  Impl(const sim::presets::Preset& preset, double rate) : loop(config(preset), rate) {
+    loop.daq().plant().add_effect(sim::make_guided_hand(hand));
     cycles_per_reading = std::max<long>(1, std::lround(rate / 1000.0));
   }
   static sim::PlantConfig config(const sim::presets::Preset& preset) {
@@ -21,19 +20,12 @@ struct CoreApparatus::Impl {
     c.knob = preset.knob;
     return c;
   }
-  static hapticd::CoreConfig core_config(const capture::SimDaq& daq, double rate) {
-    hapticd::CoreConfig c;
-    c.rate_hz = rate;
-    c.calibration = daq.calibration();
-    return c;
-  }
   void post(const hapticd::CoreCommand& c) {
-    if (!core.post(c)) throw ApparatusError("hapticd's core did not take a command (its queue is full)");
+    if (!loop.post(c)) throw ApparatusError("hapticd's core did not take a command (its queue is full)");
   }
 
   sim::HandChannel hand;
-  capture::SimDaq daq;
-  hapticd::HapticCore core;
+  hapticd::SimTimeLoop loop;
   long cycles_per_reading = 1;
   bool render_mode = false;
 };
@@ -82,14 +74,7 @@ TrialRecording CoreApparatus::stop_trial() {
 
 KnobReading CoreApparatus::next() {
   hapticd::LoopRecord rec;
-  for (long i = 0; i < impl_->cycles_per_reading; ++i) {
-    capture::DaqInputs in;
-    capture::DaqOutputs out;
-    hapticd::CycleContext ctx;
-    ctx.io_ok = impl_->daq.read(in) == capture::IoStatus::ok;
-    impl_->core.cycle(in, ctx, out, rec);
-    (void)impl_->daq.write(out);
-  }
+  for (long i = 0; i < impl_->cycles_per_reading; ++i) rec = impl_->loop.step();
   if (rec.faults != 0) {
     impl_->render_mode = false;
     throw ApparatusError("hapticd's core latched a fault (" + hapticd::fault_list(rec.faults) + ")");
