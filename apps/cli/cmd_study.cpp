@@ -2,6 +2,8 @@
 // participants run through hapticd, the sessions in a store, the tidy export
 // and the analysis (docs/studies.md).
 #include <algorithm>
+#include <cstddef>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <format>
@@ -10,6 +12,8 @@
 #include <optional>
 #include <iostream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "cancel.hpp"
 #include "commands.hpp"
@@ -36,8 +40,9 @@ const CommandSpec kStudySpec{
     "study",
     "simulate PROTOCOL.json --participants N --db FILE.sqlite [--socket PATH] [--hand NAME] |\n"
     "       sessions STUDY --db FILE.sqlite | export STUDY --db FILE.sqlite --out FILE.csv |\n"
-    "       report STUDY --db FILE.sqlite --out DIR [--json FILE|-] [--format pdf,svg,png]",
-    "Run user studies with simulated participants; list, export and analyse them.\n"
+    "       report STUDY --db FILE.sqlite --out DIR [--json FILE|-] [--format pdf,svg,png] |\n"
+    "       withdraw STUDY PARTICIPANT --db FILE.sqlite [--yes]",
+    "Run user studies with simulated participants; list, export and analyse them; withdraw a participant.\n"
     "simulate: each participant (codes SIM01, SIM02, …, or from --first) runs the\n"
     "protocol's whole plan through hapticd, which must run on the sim backend with\n"
     "a guided hand (daq config \"hand\": {\"channel\": NAME}); the simulated\n"
@@ -56,7 +61,11 @@ const CommandSpec kStudySpec{
     "Other kinds' over the levels of one factor (--factor; default the one with the\n"
     "most levels): ratings and measures per level, Friedman and Wilcoxon on each\n"
     "rating, its correlations with EMG and SC; matching, the settings against the\n"
-    "reference knobs (thesis Tables 12–14).",
+    "reference knobs (thesis Tables 12–14).\n"
+    "withdraw: the participant withdraws from STUDY and their data is deleted for\n"
+    "good: their session, its trials and notes, and their trials' captures with\n"
+    "samples, biometrics and results. Without --yes it only says what it would\n"
+    "delete and exits non-zero.",
     with_figure_options({{"db", true, "the sqlite store (hapticd's)"},
      {"participants", true, "how many simulated participants (default 1)"},
      {"first", true, "the first participant's number (default 1: SIM01)"},
@@ -66,14 +75,16 @@ const CommandSpec kStudySpec{
      {"in-process", false, "simulate: hapticd's core in simulated time, no daemon (no captures, no biometrics)"},
      {"out", true, "export: the CSV file; report: the directory for the figures"},
      {"json", true, "report: write the analysis as JSON; '-' for stdout"},
-     {"factor", true, "report, not pointing: the factor whose levels are compared"}},
+     {"factor", true, "report, not pointing: the factor whose levels are compared"},
+     {"yes", false, "withdraw: delete the data (without it: only say what would be deleted)"}},
                         "out"),
-    2, 2, false,
+    2, 3, false,
     {"knoblab study simulate examples/studies/pointing.json --participants 2 --db /var/lib/knoblab/knoblab.sqlite",
      "knoblab study sessions rotary-pointing --db /var/lib/knoblab/knoblab.sqlite",
      "knoblab study export rotary-pointing --db /var/lib/knoblab/knoblab.sqlite --out trials.csv",
      "knoblab study report rotary-pointing --db /var/lib/knoblab/knoblab.sqlite --out report/ --json report.json",
-     "knoblab study report list-selection --factor knob --db /var/lib/knoblab/knoblab.sqlite --out report/"}};
+     "knoblab study report list-selection --factor knob --db /var/lib/knoblab/knoblab.sqlite --out report/",
+     "knoblab study withdraw rotary-pointing P07 --db /var/lib/knoblab/knoblab.sqlite --yes"}};
 
 namespace {
 
@@ -257,16 +268,71 @@ int report(const Args& args, const std::string& study_id) {
   return trial_report(args, protocol, db, study_id);
 }
 
+// "1 234 567": the sample counts of a whole session run to millions.
+std::string with_digit_groups(std::int64_t count) {
+  std::string digits = std::to_string(count);
+  for (auto i = static_cast<std::ptrdiff_t>(digits.size()) - 3; i > 0; i -= 3)
+    digits.insert(static_cast<std::size_t>(i), " ");
+  return digits;
+}
+
+std::string counted(std::size_t n, const std::string& noun) {
+  return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+}
+
+// "1 session, 112 trials, 3 notes, 112 captures (1 234 567 samples)".
+std::string withdrawal_counts(const store::StudyWithdrawal& w) {
+  return counted(w.sessions, "session") + ", " + counted(w.trials, "trial") + ", " + counted(w.notes, "note") +
+         ", " + counted(w.captures, "capture") + " (" + with_digit_groups(w.samples) + " samples)";
+}
+
+std::string kept_captures(const store::StudyWithdrawal& w) {
+  if (w.shared_captures == 0) return "";
+  return "; " + counted(w.shared_captures, "capture") + " kept: other participants' trials refer to " +
+         (w.shared_captures == 1 ? "it" : "them");
+}
+
+// Deleting is final, so it takes --yes; without it the same counts, as what
+// would go, and a non-zero exit: a typo in a code or a study loses nothing.
+int withdraw(const Args& args, const std::string& study_id, const std::string& participant) {
+  const std::string who = participant + (args.has("yes") ? " withdrawn from " : " of ") + study_id + ": ";
+  if (!args.has("yes")) {
+    store::Store db = open_store_to_read(args.require("db"));
+    const store::StudyWithdrawal w = db.study_withdrawal(study_id, participant);
+    std::cout << who << "would delete " << withdrawal_counts(w) << kept_captures(w) << "\n";
+    throw UsageError("withdraw deleted nothing: add --yes to delete " + participant + "'s data for good");
+  }
+  store::Store db = open_store_to_add(args.require("db"));
+  const store::StudyWithdrawal w = db.withdraw_study_participant(study_id, participant);
+  std::cout << who << withdrawal_counts(w) << " deleted" << kept_captures(w) << "\n";
+  return 0;
+}
+
+// withdraw names a participant too; the others only their STUDY or file.
+void check_positionals(const std::vector<std::string>& positionals) {
+  const std::string& action = positionals.at(0);
+  if (action != "simulate" && action != "sessions" && action != "export" && action != "report" && action != "withdraw")
+    throw UsageError("study: unknown action '" + action + "' (simulate, sessions, export, report, withdraw)");
+  if (action == "withdraw") {
+    if (positionals.size() != 3) throw UsageError("study withdraw: give STUDY and PARTICIPANT (a code such as P07)");
+    return;
+  }
+  if (positionals.size() > 2)
+    throw UsageError("study " + action + ": unexpected '" + positionals[2] + "' (it takes one " +
+                     (action == "simulate" ? "PROTOCOL.json" : "STUDY") + ")");
+}
+
 }  // namespace
 
 int run_study(const Args& args) {
+  check_positionals(args.positionals());
   const std::string& action = args.positionals().at(0);
   const std::string& target = args.positionals().at(1);
+  if (action == "withdraw") return withdraw(args, target, args.positionals().at(2));
   if (action == "simulate") return simulate(args, target);
   if (action == "sessions") return sessions(args, target);
   if (action == "export") return export_trials(args, target);
-  if (action == "report") return report(args, target);
-  throw UsageError("study: unknown action '" + action + "' (simulate, sessions, export, report)");
+  return report(args, target);
 }
 
 }  // namespace knoblab::cli

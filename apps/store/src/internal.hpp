@@ -31,6 +31,10 @@ std::int64_t insert_capture_row(sqlite::Connection& db, const NewCapture& info,
 // and the knob made for it when nothing else uses it, in one transaction.
 void remove_unfinished_capture(sqlite::Connection& db, std::int64_t id,
                                std::optional<std::int64_t> created_knob);
+// store.cpp: Store::delete_capture inside the caller's write transaction:
+// the capture with everything that cascades from it. Refuses (StoreError)
+// an unknown capture and one still 'recording'.
+void delete_capture_row(sqlite::Connection& db, std::int64_t id);
 // The knob a capture row refers to, if any.
 std::optional<std::int64_t> knob_of_capture(sqlite::Connection& db, std::int64_t id);
 

@@ -243,15 +243,19 @@ CaptureWriter Store::begin_capture(const NewCapture& info, WriterOptions options
   return CaptureWriter(db_, id, info.has_command, std::move(options), knob);
 }
 
-void Store::delete_capture(std::int64_t id) {
-  sqlite::Transaction tx(*db_);
-  auto st = db_->prepare("SELECT status FROM captures WHERE id = ?1");
+void detail::delete_capture_row(sqlite::Connection& db, std::int64_t id) {
+  auto st = db.prepare("SELECT status FROM captures WHERE id = ?1");
   st.bind_int(1, id);
   if (!st.step()) throw StoreError("no capture with id " + std::to_string(id));
   if (st.column_text(0) == "recording")
     throw StoreError("capture " + std::to_string(id) + " is still recording");
   st.reset();
-  db_->prepare("DELETE FROM captures WHERE id = ?1").bind_int(1, id).run();
+  db.prepare("DELETE FROM captures WHERE id = ?1").bind_int(1, id).run();
+}
+
+void Store::delete_capture(std::int64_t id) {
+  sqlite::Transaction tx(*db_);
+  detail::delete_capture_row(*db_, id);
   tx.commit();
 }
 

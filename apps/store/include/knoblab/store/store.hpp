@@ -198,6 +198,21 @@ class Store {
   std::int64_t add_study_note(const StudyNote& note);
   std::vector<StudyNote> study_notes(std::int64_t session_id);  // by note_id
 
+  // A participant's withdrawal from a study (their right to have their data
+  // deleted), in one transaction: their session, its trials and notes, and
+  // every capture of those trials with what cascades from it (as
+  // delete_capture) - except a capture another participant's trial also
+  // refers to, which is kept. Finished or not. Freed pages are overwritten
+  // with zeros (sqlite's secure_delete) and the write-ahead log is
+  // checkpointed and emptied when no other connection is using it, so the
+  // deleted rows do not linger readable in the file. Refuses (StoreError,
+  // deleting nothing) a participant without a session of this study, naming
+  // the codes that have one, and a capture still 'recording'.
+  StudyWithdrawal withdraw_study_participant(std::string_view study, std::string_view participant);
+  // What withdraw_study_participant would delete now, from one snapshot;
+  // deletes nothing (works on a read-only store). Refuses as it does.
+  StudyWithdrawal study_withdrawal(std::string_view study, std::string_view participant);
+
   std::string integrity_check();  // "ok" when sqlite finds nothing wrong
 
   sqlite::Connection& connection() { return *db_; }

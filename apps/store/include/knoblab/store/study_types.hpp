@@ -65,4 +65,16 @@ struct StudyNote {
   std::string tags_json = "[]";            // JSON array of strings (free-text tags)
 };
 
+// What withdrawing a participant from a study deletes (or, previewed, would
+// delete): their session with its trials and notes, and the captures of
+// those trials with their samples, biometrics and results.
+struct StudyWithdrawal {
+  std::size_t sessions = 0;
+  std::size_t trials = 0;
+  std::size_t notes = 0;
+  std::size_t captures = 0;
+  std::int64_t samples = 0;          // in those captures
+  std::size_t shared_captures = 0;   // kept: another participant's trial refers to them too
+};
+
 }  // namespace knoblab::store
