@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <cstdio>
+#include <limits>
 #include <vector>
 
 #include "knoblab/model/render_stability.hpp"
@@ -89,6 +91,21 @@ TEST(RenderStability, TheFallingSideOfADetentRendersStably) {
   EXPECT_TRUE(loop.renders_stably(-5.0, 0.0));
   EXPECT_TRUE(loop.renders_stably(-5.0, 0.002));
   EXPECT_GT(loop.spectral_radius(-0.5, 0.0), 0.99) << "a slow mode: the knob on its grip";
+}
+
+TEST(RenderStability, HowSteepAFallRendersIsTheLeastStableStiffness) {
+  const LoopStability loop{LoopDynamics{}};
+  const double k_min = loop.min_stiffness(0.0);
+  std::printf("the steepest fall that renders: %.4g N·m/rad (B = 0)\n", k_min);
+  ASSERT_TRUE(std::isfinite(k_min));
+  EXPECT_LT(k_min, -5.0) << "the falls above render";
+  EXPECT_TRUE(loop.renders_stably(k_min, 0.0));
+  EXPECT_FALSE(loop.renders_stably(1.001 * k_min, 0.0));
+  EXPECT_TRUE(std::isnan(loop.min_stiffness(1.2 * loop.max_damping(0.0)))) << "no fall renders where no spring does";
+  LoopDynamics slow;  // a 1 kHz loop, as the UI tests run hapticd: no fall is steep enough to ring
+  slow.rate_hz = 1000.0;
+  slow.velocity_cutoff_hz = 200.0;
+  EXPECT_EQ(LoopStability(slow).min_stiffness(0.0), -std::numeric_limits<double>::infinity());
 }
 
 TEST(RenderStability, TheFreeFunctionsAndTheClassAgree) {

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <functional>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -14,6 +13,7 @@
 
 #include "knoblab/model/render_stability.hpp"
 #include "short_number.hpp"
+#include "stable_range.hpp"
 
 namespace knoblab::hapticd {
 
@@ -182,34 +182,16 @@ void check_stability(const TileSet& set, const SafetyLimits& limits, const model
   // with margin need no test of their own. Until then, and where both
   // change, each point is tested on its own.
   constexpr int kTestsBeforeRange = 24;
-  struct Range {
-    double lo, hi;  // stable for lo ≤ x ≤ hi; empty (lo > hi) when the fixed value alone is not
-    bool holds(double x, const std::function<bool()>& test) const {
-      if (!(lo <= hi)) return false;
-      const double margin = 1e-6 * std::max(1.0, std::abs(hi) + std::abs(lo));
-      if (x >= lo + margin && x <= hi - margin) return true;
-      if (x < lo - margin || x > hi + margin) return false;
-      return test();  // at an end of the range: test it
-    }
-  };
-  std::map<double, Range> k_by_damping, b_by_stiffness;
+  std::map<double, StableRange> k_by_damping, b_by_stiffness;
   std::map<double, int> tests_at_b, tests_at_k;
   const auto stiffness_range = [&](double B) {
-    Range in{1.0, 0.0};
-    if (loop.renders_stably(0.0, B)) {
-      in.hi = loop.max_stiffness(B);
-      double bad = -1e4, good = 0.0;  // the falling side of a detent: how steep a fall renders
-      if (loop.renders_stably(bad, B)) good = bad;
-      for (int k = 0; k < 60 && good != bad && bad - good < -1e-9 * std::abs(bad); ++k) {
-        const double mid = 0.5 * (good + bad);
-        (loop.renders_stably(mid, B) ? good : bad) = mid;
-      }
-      in.lo = good;
-    }
+    StableRange in;
+    // The falling side of a detent is a negative stiffness: how steep a fall renders.
+    if (loop.renders_stably(0.0, B)) in = {loop.min_stiffness(B), loop.max_stiffness(B)};
     return in;
   };
   const auto damping_range = [&](double K) {
-    Range in{1.0, 0.0};
+    StableRange in;
     if (loop.renders_stably(K, 0.0)) in = {loop.min_damping(K), loop.max_damping(K)};
     return in;
   };

@@ -314,6 +314,9 @@ double LoopStability::max_damping(double K) const {
 double LoopStability::min_damping(double K) const {
   return edge([&](double B) { return renders_stably(K, B); }, -1.0);
 }
+double LoopStability::min_stiffness(double B) const {
+  return edge([&](double K) { return renders_stably(K, B); }, -1.0);
+}
 
 bool renders_stably(const LoopDynamics& d, double K, double B) { return LoopStability(d).renders_stably(K, B); }
 double max_stiffness(const LoopDynamics& d, double B) { return LoopStability(d).max_stiffness(B); }

@@ -84,11 +84,14 @@ class LoopStability {
   // The largest modulus among the closed loop's roots that count (see the
   // header comment): ≤ 1 is stable (1: a free knob stays where it is).
   double spectral_radius(double K, double B) const;
-  // Bisection on renders_stably, to 1e-4 relative. max_stiffness: the
-  // largest K ≥ 0 with this B; max_damping / min_damping: the largest B ≥ 0
-  // and the least (most negative) B ≤ 0 with this K. NaN when (0, B) resp.
-  // (K, 0) is itself unstable; +∞ when nothing up to 1e9 is unstable.
+  // Bisection on renders_stably, to 1e-4 relative, each returning a stable
+  // value. max_stiffness / min_stiffness: the largest K ≥ 0 and the least
+  // (most negative: the falling side of a detent) K ≤ 0 with this B;
+  // max_damping / min_damping: the largest B ≥ 0 and the least B ≤ 0 with
+  // this K. NaN when (0, B) resp. (K, 0) is itself unstable; ±∞ when
+  // nothing up to 1e9 either way is unstable.
   double max_stiffness(double B) const;
+  double min_stiffness(double B) const;
   double max_damping(double K) const;
   double min_damping(double K) const;
 
