@@ -17,6 +17,7 @@
 
 #include "cancel.hpp"
 #include "commands.hpp"
+#include "progress.hpp"
 #include "figure_args.hpp"
 #include "knoblab/hal/shared_hand_channel.hpp"
 #include "knoblab/study/participant.hpp"
@@ -76,7 +77,8 @@ const CommandSpec kStudySpec{
      {"out", true, "export: the CSV file; report: the directory for the figures"},
      {"json", true, "report: write the analysis as JSON; '-' for stdout"},
      {"factor", true, "report, not pointing: the factor whose levels are compared"},
-     {"yes", false, "withdraw: delete the data (without it: only say what would be deleted)"}},
+     {"yes", false, "withdraw: delete the data (without it: only say what would be deleted)"},
+     kQuietOption},
                         "out"),
     2, 3, false,
     {"knoblab study simulate examples/studies/pointing.json --participants 2 --db /var/lib/knoblab/knoblab.sqlite",
@@ -131,6 +133,7 @@ int simulate(const Args& args, const std::string& protocol_path) {
     apparatus = std::make_unique<studyrun::HapticdApparatus>(hapticd_socket(args));
   }
   CancelOnSignal on_signal;  // Ctrl-C stops at the next reading; the running trial is not committed
+  Progress progress = Progress::on_stderr(args, "study simulate");
   for (long long n = first; n < first + participants; ++n) {
     const std::string code = simulated_code(n);
     const auto index = static_cast<std::size_t>(n - 1);
@@ -142,11 +145,11 @@ int simulate(const Args& args, const std::string& protocol_path) {
     options.max_trials = static_cast<std::size_t>(max_trials);
     options.cancelled = cancel_requested;
     options.on_trial_committed = [&](const store::StudyTrial& t) {
-      std::cerr << "\r" << code << ": trial " << t.trial_index << " committed" << std::flush;
+      progress.show(code + ": trial " + std::to_string(t.trial_index) + " committed");
     };
     const studyrun::SessionResult r = studyrun::run_session(db, protocol, text, code, index, *apparatus, participant, options);
     participant.release();
-    std::cerr << "\r";
+    progress.clear();
     std::cout << code << ": session " << r.session_id << ", " << r.trials_run << " trials run"
               << (r.resumed_at > 1 ? " (resumed at trial " + std::to_string(r.resumed_at) + ")" : "")
               << (r.finished ? ", finished" : ", not finished") << "\n";
