@@ -3,18 +3,14 @@
 // as the daemon's core sees a real DAQ's.
 #include <gtest/gtest.h>
 
+#include "core_harness.hpp"
 #include "knoblab/hapticd/sim_time_loop.hpp"
 #include "knoblab/hapticd/supervisor.hpp"
-#include "knoblab/sim/presets.hpp"
 
 namespace knoblab::hapticd {
 namespace {
 
-sim::PlantConfig moderate_detents() {
-  sim::PlantConfig p;
-  p.knob = *sim::presets::knob("moderate-detents");
-  return p;
-}
+using testing::plant_with;
 
 std::uint32_t faults_after(SimTimeLoop& loop, int cycles) {
   std::uint32_t faults = 0;
@@ -23,13 +19,13 @@ std::uint32_t faults_after(SimTimeLoop& loop, int cycles) {
 }
 
 TEST(SimTimeLoop, AHealthyLoopRunsWithoutFaultsAndCountsItsCycles) {
-  SimTimeLoop loop(moderate_detents(), 10000.0);
+  SimTimeLoop loop(plant_with("moderate-detents"), 10000.0);
   EXPECT_EQ(faults_after(loop, 1000), 0u);
   EXPECT_EQ(loop.step().seq, 1000u);
 }
 
 TEST(SimTimeLoop, WritesThatFailCyclesRunningLatchTheIoFaultAsInTheDaemon) {
-  SimTimeLoop loop(moderate_detents(), 10000.0);
+  SimTimeLoop loop(plant_with("moderate-detents"), 10000.0);
   ASSERT_EQ(faults_after(loop, 10), 0u);
   loop.daq().set_write_failure(true);
   const int latch = SafetyLimits{}.max_consecutive_io_errors;
@@ -38,7 +34,7 @@ TEST(SimTimeLoop, WritesThatFailCyclesRunningLatchTheIoFaultAsInTheDaemon) {
 }
 
 TEST(SimTimeLoop, ReadsThatFailCyclesRunningLatchTheIoFault) {
-  SimTimeLoop loop(moderate_detents(), 10000.0);
+  SimTimeLoop loop(plant_with("moderate-detents"), 10000.0);
   loop.daq().set_read_failure(true);
   EXPECT_NE(faults_after(loop, SafetyLimits{}.max_consecutive_io_errors) & kFaultIo, 0u);
 }
