@@ -79,6 +79,7 @@ class Rig {
   std::string hand() const { return "/knoblab-test-hand-" + std::to_string(::getpid()); }
   std::string telemetry() const { return "/knoblab-test-tlm-" + std::to_string(::getpid()); }
   std::string log() const { return read_file(dir_ / "hapticd.err"); }
+  pid_t hapticd_pid() const { return hapticd_; }
   const ScratchDir& dir() const { return dir_; }
 
  private:
@@ -179,6 +180,38 @@ TEST(StudyThroughHapticd, AStoppedTrialIsWaitedForWhileHapticdStillHoldsItsSampl
   store::Store s = store::Store::open(rig.db(), {.read_only = true});
   EXPECT_EQ(s.capture_info(*rec.capture_id)->status, "complete");
   EXPECT_GT(s.load_samples(*rec.capture_id).t.size(), 4000u);  // about a second at 5 kHz
+}
+
+// A busy emulated machine has left hapticd's telemetry silent for more than
+// 5 s (SIGSTOP stands in for it here): the session waits on. A killed
+// hapticd is told apart by its control socket closing, at once.
+TEST(StudyThroughHapticd, TelemetryHeldUpForSecondsIsWaitedForButAKilledHapticdEndsTheReadingAtOnce) {
+  Rig rig;
+  studyrun::HapticdApparatus apparatus(rig.socket());
+  apparatus.next();
+  ::kill(rig.hapticd_pid(), SIGSTOP);
+  const auto stopped = std::chrono::steady_clock::now();
+  auto reading = std::async(std::launch::async, [&] {
+    for (;;) {  // what was in the ring before the stop, then the first after it
+      const studyrun::KnobReading r = apparatus.next();
+      if (std::chrono::steady_clock::now() - stopped > 6s) return r;
+    }
+  });
+  std::this_thread::sleep_for(7s);
+  ::kill(rig.hapticd_pid(), SIGCONT);
+  ASSERT_EQ(reading.wait_for(10s), std::future_status::ready) << rig.log();
+  EXPECT_NO_THROW(reading.get());
+
+  rig.stop_hapticd(SIGKILL);
+  const auto killed = std::chrono::steady_clock::now();
+  std::string error;
+  try {
+    for (;;) apparatus.next();  // the ring's last records, then the loss
+  } catch (const studyrun::ApparatusError& e) {
+    error = e.what();
+  }
+  EXPECT_LT(std::chrono::steady_clock::now() - killed, 2s);
+  EXPECT_NE(error.find("hapticd lost"), std::string::npos) << error;
 }
 
 TEST(StudyThroughHapticd, KilledMidSessionWithHapticdItResumesAtTheNextTrialAndLosesNothingCommitted) {

@@ -19,13 +19,14 @@ namespace knoblab::studyrun {
 class HapticdApparatus final : public Apparatus {
  public:
   // Connects (throws ApparatusError naming the socket and the reason).
-  // Telemetry silent for `silence_limit` means hapticd is gone (a killed
-  // daemon never closes its ring). Store commits do not hold the telemetry
-  // up, but an emulated or overloaded machine can leave hapticd's writer
-  // thread unscheduled for a second or more, so the limit is several
-  // seconds, not one.
+  // Telemetry silent for `silence_limit` means hapticd hangs. A killed
+  // hapticd is seen sooner, by its control socket closing (its ring is never
+  // closed). Store commits do not hold the telemetry up, but on a busy
+  // emulated machine hapticd's writer thread has gone unscheduled for more
+  // than 5 s (the image test's guest on a slow host), so the limit is tens
+  // of seconds.
   explicit HapticdApparatus(const std::string& socket_path,
-                            std::chrono::milliseconds silence_limit = std::chrono::milliseconds(5000));
+                            std::chrono::milliseconds silence_limit = std::chrono::seconds(30));
   // Stops a trial's recording left running by a session that was stopped or
   // failed mid-trial: hapticd would refuse the next start_trial, the resumed
   // session's, as busy.
