@@ -77,6 +77,10 @@ CYCLICTEST_SECONDS = 30
 STUDY = "/usr/share/knoblab/studies/list-selection.json"
 SIMULATE = f"knoblab study simulate {STUDY} --participants 1 --db {DB}"
 TRIALS = "SELECT trial_index, result_json, ratings_json, capture_id FROM study_trials ORDER BY trial_index"
+STUDY_LOG = "/var/lib/knoblab/study-before-cut.log"
+# How long the guest waits for a trial under way after one is committed; on
+# a busy emulated host a trial with its commits takes a minute or more.
+POWER_CUT_WAIT_S = 600
 
 # Shell functions defined once in the guest's shell: an event caught by a
 # watcher that subscribes before whatever causes it (`watch_event NAME`, then
@@ -643,30 +647,43 @@ def check_amp_comms(con, report, check):
 
 
 def start_power_cut(con, report):
-    """A study session in the background, and what it has committed once two
-    trials are in and the next one's recording has its first seconds in the
+    """A study session in the background, and what it has committed once a
+    trial is in and the next one's recording has its first seconds in the
     store: the caller then kills QEMU at once, mid-trial."""
     # Listed before the session: emulated and busy, a listing takes long
     # enough for a trial to end, so none is taken between the poll and the cut.
     rc, listing = con.run(f"knoblab list --db {DB}", timeout=300)
     report["power_cut"] = {"list_before_session": listing.splitlines()}
     # In a subshell: the driver appends "; echo …" to the line, and "&;" is no shell.
-    con.run(f"( nohup {SIMULATE} >/var/lib/knoblab/study-before-cut.log 2>&1 & )")
-    cut, deadline = {}, time.monotonic() + 300
-    while time.monotonic() < deadline:
-        trials = sql(con, TRIALS)
-        rows = sql(con, "SELECT id, rate_hz, (SELECT count(*) FROM samples WHERE capture_id = c.id) AS rows "
-                        "FROM captures c WHERE status = 'recording'")
-        # Within its first 2 s: a list-selection trial records about 6 s, so
-        # the cut falls well before the trial's end.
-        if len(trials) >= 2 and len(rows) == 1 and 0 < rows[0]["rows"] < 2 * rows[0]["rate_hz"]:
-            cut = {"id": rows[0]["id"], "rows": rows[0]["rows"], "trials": trials}
-            break
-        time.sleep(1)
-    report["power_cut"].update({"committed_before_cut": {k: v for k, v in cut.items() if k != "trials"},
+    con.run(f"( nohup {SIMULATE} >{STUDY_LOG} 2>&1 & )")
+    # The guest polls its own store, so that no round trip over the console
+    # falls between the poll that sees the trial under way and the cut (a
+    # busy emulated host is slow at both). Within its first 2 s: a
+    # list-selection trial records about 6 s, so the cut falls well before
+    # the trial's end.
+    poll = ("SELECT (SELECT count(*) FROM study_trials) || ' ' || coalesce((SELECT id || ' ' || "
+            "CAST(rate_hz AS INTEGER) || ' ' || (SELECT count(*) FROM samples WHERE capture_id = c.id) "
+            "FROM captures c WHERE status = 'recording'), '')")
+    started = time.monotonic()
+    rc, out = con.run(
+        f"end=$(( $(date +%s) + {POWER_CUT_WAIT_S} )); while :; do "
+        f"set -- $(sqlite3 -readonly {DB} \"{poll}\"); "
+        f"if [ \"${{1:-0}}\" -ge 1 ] && [ -n \"$4\" ] && [ \"$4\" -gt 0 ] && [ \"$4\" -lt $((2 * $3)) ]; "
+        f"then echo \"cut $2 $4\"; sqlite3 -readonly -json {DB} \"{TRIALS}\"; break; fi; "
+        f"pgrep -f '[s]tudy simulate' >/dev/null || {{ echo \"ended $*\"; break; }}; "
+        f"[ $(date +%s) -lt $end ] || {{ echo \"timeout $*\"; break; }}; sleep 0.2; done",
+        timeout=POWER_CUT_WAIT_S + 120)
+    waited = round(time.monotonic() - started, 1)
+    first, _, rest = out.strip().partition("\n")
+    words = first.split()
+    cut = {}
+    if words[:1] == ["cut"]:
+        cut = {"id": int(words[1]), "rows": int(words[2]), "trials": json.loads(rest) if rest.strip() else []}
+    report["power_cut"].update({"waited_s": waited, "poll_said": first,
+                                "committed_before_cut": {k: v for k, v in cut.items() if k != "trials"},
                                 "trials_before_cut": len(cut.get("trials", []))})
     if not cut:  # the session's own words on why it got no further
-        rc, log = con.run("tail -n 5 /var/lib/knoblab/study-before-cut.log")
+        rc, log = con.run(f"tail -n 5 {STUDY_LOG}")
         report["power_cut"]["study_log"] = log.strip().splitlines()
     return cut
 
@@ -698,7 +715,15 @@ def check_power_cut(con, report, check, cut):
           and row.get("status") == "incomplete" and row.get("sample_count") == row.get("rows"),
           f"integrity_check {integrity!r}; capture {cut.get('id')}: {cut.get('rows')} samples committed "
           f"before the cut, {row.get('rows')} after the reboot, stored {row.get('status')} "
-          f"({row.get('end_reason')})", "power_cut_ok")
+          f"({row.get('end_reason')})" + ("" if cut else why_no_cut(report["power_cut"])), "power_cut_ok")
+
+
+def why_no_cut(power_cut):
+    """For a check's line: what the guest's poll last saw and the session's
+    last words, when no trial was under way to cut."""
+    return (f"; no trial under way to cut after {power_cut.get('waited_s')} s, the poll said "
+            f"{power_cut.get('poll_said')!r} (trials, recording capture, rate, rows); the session's log ends "
+            f"{power_cut.get('study_log', [])[-2:]}")
 
 
 if __name__ == "__main__":
