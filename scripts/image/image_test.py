@@ -81,6 +81,7 @@ STUDY_LOG = "/var/lib/knoblab/study-before-cut.log"
 # How long the guest waits for a trial under way after one is committed; on
 # a busy emulated host a trial with its commits takes a minute or more.
 POWER_CUT_WAIT_S = 600
+SESSION_RUNS = 4
 
 # Shell functions defined once in the guest's shell: an event caught by a
 # watcher that subscribes before whatever causes it (`watch_event NAME`, then
@@ -664,14 +665,19 @@ def start_power_cut(con, report):
     poll = ("SELECT (SELECT count(*) FROM study_trials) || ' ' || coalesce((SELECT id || ' ' || "
             "CAST(rate_hz AS INTEGER) || ' ' || (SELECT count(*) FROM samples WHERE capture_id = c.id) "
             "FROM captures c WHERE status = 'recording'), '')")
+    # A session that ends before a trial is under way to cut is run again, as
+    # an experimenter would (it resumes), up to SESSION_RUNS times in all;
+    # the check's line then says why it ended.
     started = time.monotonic()
     rc, out = con.run(
-        f"end=$(( $(date +%s) + {POWER_CUT_WAIT_S} )); while :; do "
+        f"end=$(( $(date +%s) + {POWER_CUT_WAIT_S} )); runs=1; while :; do "
         f"set -- $(sqlite3 -readonly {DB} \"{poll}\"); "
         f"if [ \"${{1:-0}}\" -ge 1 ] && [ -n \"$4\" ] && [ \"$4\" -gt 0 ] && [ \"$4\" -lt $((2 * $3)) ]; "
-        f"then echo \"cut $2 $4\"; sqlite3 -readonly -json {DB} \"{TRIALS}\"; break; fi; "
-        f"pgrep -f '[s]tudy simulate' >/dev/null || {{ echo \"ended $*\"; break; }}; "
-        f"[ $(date +%s) -lt $end ] || {{ echo \"timeout $*\"; break; }}; sleep 0.2; done",
+        f"then echo \"cut $2 $4 $runs\"; sqlite3 -readonly -json {DB} \"{TRIALS}\"; break; fi; "
+        f"if ! pgrep -f '[s]tudy simulate' >/dev/null; then "
+        f"[ $runs -lt {SESSION_RUNS} ] || {{ echo \"ended $runs $*\"; break; }}; "
+        f"runs=$((runs + 1)); ( nohup {SIMULATE} >>{STUDY_LOG} 2>&1 & ); sleep 1; fi; "
+        f"[ $(date +%s) -lt $end ] || {{ echo \"timeout $runs $*\"; break; }}; sleep 0.2; done",
         timeout=POWER_CUT_WAIT_S + 120)
     waited = round(time.monotonic() - started, 1)
     first, _, rest = out.strip().partition("\n")
@@ -679,12 +685,13 @@ def start_power_cut(con, report):
     cut = {}
     if words[:1] == ["cut"]:
         cut = {"id": int(words[1]), "rows": int(words[2]), "trials": json.loads(rest) if rest.strip() else []}
-    report["power_cut"].update({"waited_s": waited, "poll_said": first,
+    runs = int(words[-1] if words[:1] == ["cut"] else words[1]) if len(words) > 1 else None
+    report["power_cut"].update({"waited_s": waited, "poll_said": first, "session_runs": runs,
                                 "committed_before_cut": {k: v for k, v in cut.items() if k != "trials"},
                                 "trials_before_cut": len(cut.get("trials", []))})
-    if not cut:  # the session's own words on why it got no further
-        rc, log = con.run(f"tail -n 5 {STUDY_LOG}")
-        report["power_cut"]["study_log"] = log.strip().splitlines()
+    # The session's own words when it ended early (each run's, appended).
+    rc, log = con.run(f"grep -i error {STUDY_LOG} | tail -n 5")
+    report["power_cut"]["study_log"] = log.strip().splitlines()
     return cut
 
 
@@ -715,15 +722,23 @@ def check_power_cut(con, report, check, cut):
           and row.get("status") == "incomplete" and row.get("sample_count") == row.get("rows"),
           f"integrity_check {integrity!r}; capture {cut.get('id')}: {cut.get('rows')} samples committed "
           f"before the cut, {row.get('rows')} after the reboot, stored {row.get('status')} "
-          f"({row.get('end_reason')})" + ("" if cut else why_no_cut(report["power_cut"])), "power_cut_ok")
+          f"({row.get('end_reason')})" + session_runs(report["power_cut"])
+          + ("" if cut else why_no_cut(report["power_cut"])), "power_cut_ok")
+
+
+def session_runs(power_cut):
+    """For a check's line: a session that had to be run again before the cut."""
+    runs = power_cut.get("session_runs") or 1
+    return "" if runs == 1 else (f"; the session ran {runs} times before the cut, ending with "
+                                 f"{power_cut.get('study_log', [])[-1:]}")
 
 
 def why_no_cut(power_cut):
     """For a check's line: what the guest's poll last saw and the session's
     last words, when no trial was under way to cut."""
     return (f"; no trial under way to cut after {power_cut.get('waited_s')} s, the poll said "
-            f"{power_cut.get('poll_said')!r} (trials, recording capture, rate, rows); the session's log ends "
-            f"{power_cut.get('study_log', [])[-2:]}")
+            f"{power_cut.get('poll_said')!r} (session runs, trials, recording capture, rate, rows); "
+            f"the session's errors end {power_cut.get('study_log', [])[-2:]}")
 
 
 if __name__ == "__main__":
