@@ -657,42 +657,51 @@ def start_power_cut(con, report):
     report["power_cut"] = {"list_before_session": listing.splitlines()}
     # In a subshell: the driver appends "; echo …" to the line, and "&;" is no shell.
     con.run(f"( nohup {SIMULATE} >{STUDY_LOG} 2>&1 & )")
-    # The guest polls its own store, so that no round trip over the console
-    # falls between the poll that sees the trial under way and the cut (a
-    # busy emulated host is slow at both). Within its first 2 s: a
-    # list-selection trial records about 6 s, so the cut falls well before
-    # the trial's end.
+    # The trials committed once there is one: the check after the reboot
+    # wants them unchanged (a prefix of what the store then holds).
+    said, waited = poll_session(con, '[ "${1:-0}" -ge 1 ]', 'echo "trials $runs $*"')
+    trials = sql(con, TRIALS) if said[:1] == ["trials"] else []
+    # Then a trial's recording within its first 2 s: it has at least its
+    # remaining baseline and the task to run, and the guest says so as its
+    # last word, so QEMU is killed before that trial can end.
+    if trials:
+        said, more = poll_session(
+            con, '[ -n "$4" ] && [ "$4" -gt 0 ] && [ "$4" -lt $((2 * $3)) ]', 'echo "cut $2 $4 $runs"')
+        waited += more
+    cut = {}
+    if said[:1] == ["cut"]:
+        cut = {"id": int(said[1]), "rows": int(said[2]), "trials": trials}
+    runs = int(said[-1] if said[:1] == ["cut"] else said[1]) if len(said) > 1 else None
+    report["power_cut"].update({"waited_s": waited, "poll_said": " ".join(said), "session_runs": runs,
+                                "committed_before_cut": {k: v for k, v in cut.items() if k != "trials"},
+                                "trials_before_cut": len(trials)})
+    # The session's own words when it ended early (each run's, appended).
+    rc, log = con.run(f"grep -i error {STUDY_LOG} | tail -n 5")
+    report["power_cut"]["study_log"] = log.strip().splitlines()
+    return cut
+
+
+def poll_session(con, condition, say):
+    """The guest polls its own store until `condition` holds for the words of
+    the poll (trials, recording capture, its rate, its rows), then runs `say`
+    as its last word; no round trip over the console falls between the two
+    (a busy emulated host is slow at both). A session that ends first is run
+    again, as an experimenter would (it resumes), up to SESSION_RUNS runs in
+    all. Returns the words said and the seconds waited."""
     poll = ("SELECT (SELECT count(*) FROM study_trials) || ' ' || coalesce((SELECT id || ' ' || "
             "CAST(rate_hz AS INTEGER) || ' ' || (SELECT count(*) FROM samples WHERE capture_id = c.id) "
             "FROM captures c WHERE status = 'recording'), '')")
-    # A session that ends before a trial is under way to cut is run again, as
-    # an experimenter would (it resumes), up to SESSION_RUNS times in all;
-    # the check's line then says why it ended.
     started = time.monotonic()
     rc, out = con.run(
-        f"end=$(( $(date +%s) + {POWER_CUT_WAIT_S} )); runs=1; while :; do "
+        f"end=$(( $(date +%s) + {POWER_CUT_WAIT_S} )); runs=${{runs:-1}}; while :; do "
         f"set -- $(sqlite3 -readonly {DB} \"{poll}\"); "
-        f"if [ \"${{1:-0}}\" -ge 1 ] && [ -n \"$4\" ] && [ \"$4\" -gt 0 ] && [ \"$4\" -lt $((2 * $3)) ]; "
-        f"then echo \"cut $2 $4 $runs\"; sqlite3 -readonly -json {DB} \"{TRIALS}\"; break; fi; "
+        f"if {condition}; then {say}; break; fi; "
         f"if ! pgrep -f '[s]tudy simulate' >/dev/null; then "
         f"[ $runs -lt {SESSION_RUNS} ] || {{ echo \"ended $runs $*\"; break; }}; "
         f"runs=$((runs + 1)); ( nohup {SIMULATE} >>{STUDY_LOG} 2>&1 & ); sleep 1; fi; "
         f"[ $(date +%s) -lt $end ] || {{ echo \"timeout $runs $*\"; break; }}; sleep 0.2; done",
         timeout=POWER_CUT_WAIT_S + 120)
-    waited = round(time.monotonic() - started, 1)
-    first, _, rest = out.strip().partition("\n")
-    words = first.split()
-    cut = {}
-    if words[:1] == ["cut"]:
-        cut = {"id": int(words[1]), "rows": int(words[2]), "trials": json.loads(rest) if rest.strip() else []}
-    runs = int(words[-1] if words[:1] == ["cut"] else words[1]) if len(words) > 1 else None
-    report["power_cut"].update({"waited_s": waited, "poll_said": first, "session_runs": runs,
-                                "committed_before_cut": {k: v for k, v in cut.items() if k != "trials"},
-                                "trials_before_cut": len(cut.get("trials", []))})
-    # The session's own words when it ended early (each run's, appended).
-    rc, log = con.run(f"grep -i error {STUDY_LOG} | tail -n 5")
-    report["power_cut"]["study_log"] = log.strip().splitlines()
-    return cut
+    return out.strip().split(), round(time.monotonic() - started, 1)
 
 
 def check_study_resume(con, report, check, cut):
