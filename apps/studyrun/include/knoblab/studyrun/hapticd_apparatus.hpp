@@ -21,10 +21,9 @@ class HapticdApparatus final : public Apparatus {
   // Connects (throws ApparatusError naming the socket and the reason).
   // Telemetry silent for `silence_limit` means hapticd hangs. A killed
   // hapticd is seen sooner, by its control socket closing (its ring is never
-  // closed). Store commits do not hold the telemetry up, but on a busy
-  // emulated machine hapticd's writer thread has gone unscheduled for more
-  // than 5 s (the image test's guest on a slow host), so the limit is tens
-  // of seconds.
+  // closed). On a busy emulated machine (the image test's guest on a slow
+  // host) hapticd's telemetry has stopped for more than 5 s, so the limit is
+  // tens of seconds.
   explicit HapticdApparatus(const std::string& socket_path,
                             std::chrono::milliseconds silence_limit = std::chrono::seconds(30));
   // Stops a trial's recording left running by a session that was stopped or
