@@ -78,8 +78,9 @@ STUDY = "/usr/share/knoblab/studies/list-selection.json"
 SIMULATE = f"knoblab study simulate {STUDY} --participants 1 --db {DB}"
 TRIALS = "SELECT trial_index, result_json, ratings_json, capture_id FROM study_trials ORDER BY trial_index"
 STUDY_LOG = "/var/lib/knoblab/study-before-cut.log"
-# How long the guest waits for a trial under way after one is committed; on
-# a busy emulated host a trial with its commits takes a minute or more.
+# How long each of the guest's polls before the cut may wait (for a committed
+# trial, then for one under way); on a busy emulated host a trial with its
+# commits takes a minute or more.
 POWER_CUT_WAIT_S = 600
 SESSION_RUNS = 4
 
@@ -659,19 +660,21 @@ def start_power_cut(con, report):
     con.run(f"( nohup {SIMULATE} >{STUDY_LOG} 2>&1 & )")
     # The trials committed once there is one: the check after the reboot
     # wants them unchanged (a prefix of what the store then holds).
-    said, waited = poll_session(con, '[ "${1:-0}" -ge 1 ]', 'echo "trials $runs $*"')
+    said, waited = poll_session(con, '[ "${1:-0}" -ge 1 ]', "trials")
     trials = sql(con, TRIALS) if said[:1] == ["trials"] else []
     # Then a trial's recording within its first 2 s: it has at least its
     # remaining baseline and the task to run, and the guest says so as its
     # last word, so QEMU is killed before that trial can end.
     if trials:
-        said, more = poll_session(
-            con, '[ -n "$4" ] && [ "$4" -gt 0 ] && [ "$4" -lt $((2 * $3)) ]', 'echo "cut $2 $4 $runs"')
+        said, more = poll_session(con, '[ -n "$4" ] && [ "$4" -gt 0 ] && [ "$4" -lt $((2 * $3)) ]', "cut",
+                                  runs=int(said[1]))
         waited += more
+    # The poll's words: what it saw, the session's runs, then trials,
+    # recording capture, rate and rows.
     cut = {}
     if said[:1] == ["cut"]:
-        cut = {"id": int(said[1]), "rows": int(said[2]), "trials": trials}
-    runs = int(said[-1] if said[:1] == ["cut"] else said[1]) if len(said) > 1 else None
+        cut = {"id": int(said[3]), "rows": int(said[5]), "trials": trials}
+    runs = int(said[1]) if len(said) > 1 else None
     report["power_cut"].update({"waited_s": waited, "poll_said": " ".join(said), "session_runs": runs,
                                 "committed_before_cut": {k: v for k, v in cut.items() if k != "trials"},
                                 "trials_before_cut": len(trials)})
@@ -681,21 +684,23 @@ def start_power_cut(con, report):
     return cut
 
 
-def poll_session(con, condition, say):
+def poll_session(con, condition, seen, runs=1):
     """The guest polls its own store until `condition` holds for the words of
-    the poll (trials, recording capture, its rate, its rows), then runs `say`
-    as its last word; no round trip over the console falls between the two
-    (a busy emulated host is slow at both). A session that ends first is run
-    again, as an experimenter would (it resumes), up to SESSION_RUNS runs in
-    all. Returns the words said and the seconds waited."""
+    the poll (trials, recording capture, its rate, its rows), then says
+    "SEEN RUNS WORDS…" as its last word; no round trip over the console falls
+    between the two (a busy emulated host is slow at both). A session that
+    ends first is run again, as an experimenter would (it resumes), up to
+    SESSION_RUNS runs in all, counting the `runs` before this poll; it then
+    says "ended …", and "timeout …" after POWER_CUT_WAIT_S. Returns the words
+    said and the seconds waited."""
     poll = ("SELECT (SELECT count(*) FROM study_trials) || ' ' || coalesce((SELECT id || ' ' || "
             "CAST(rate_hz AS INTEGER) || ' ' || (SELECT count(*) FROM samples WHERE capture_id = c.id) "
             "FROM captures c WHERE status = 'recording'), '')")
     started = time.monotonic()
     rc, out = con.run(
-        f"end=$(( $(date +%s) + {POWER_CUT_WAIT_S} )); runs=${{runs:-1}}; while :; do "
+        f"end=$(( $(date +%s) + {POWER_CUT_WAIT_S} )); runs={int(runs)}; while :; do "
         f"set -- $(sqlite3 -readonly {DB} \"{poll}\"); "
-        f"if {condition}; then {say}; break; fi; "
+        f"if {condition}; then echo \"{seen} $runs $*\"; break; fi; "
         f"if ! pgrep -f '[s]tudy simulate' >/dev/null; then "
         f"[ $runs -lt {SESSION_RUNS} ] || {{ echo \"ended $runs $*\"; break; }}; "
         f"runs=$((runs + 1)); ( nohup {SIMULATE} >>{STUDY_LOG} 2>&1 & ); sleep 1; fi; "
