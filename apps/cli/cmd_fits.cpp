@@ -57,11 +57,11 @@ int run_fits(const Args& args) {
                           f.provenance ? nlohmann::json(f.provenance->input_sha256) : nlohmann::json()});
   }
   if (print_table_if_asked(args, table)) return 0;
-  std::printf("%6s %8s  %-8s %-24s %10s %6s %11s %5s  %-8s %s\n", "id", "capture", "model", "created",
+  std::printf("%6s %8s  %-8s %-24s %10s %6s %11s %5s  %-25s %s\n", "id", "capture", "model", "created",
               "rmse_Nm", "fit_%", "detents/rev", "files", "version", "input");
   for (const auto& f : fits) {
     const auto result = nlohmann::json::parse(f.result, nullptr, /*allow_exceptions=*/false);
-    std::printf("%6lld %8lld  %-8s %-24s %10s %6s %11s %5lld  %-8s %s\n", static_cast<long long>(f.id),
+    std::printf("%6lld %8lld  %-8s %-24s %10s %6s %11s %5lld  %-25s %s\n", static_cast<long long>(f.id),
                 static_cast<long long>(f.capture_id), f.model.c_str(), f.created_at.c_str(),
                 figure(number_at(result, {"rmse_Nm"}), 4, false).c_str(),
                 figure(number_at(result, {"fit_percent"}), 1, true).c_str(),

@@ -66,10 +66,10 @@ int list(store::Store& db, bool json) {
     std::printf("%s\n", all.dump(2).c_str());
     return 0;
   }
-  std::printf("%-12s %6s %8s  %-24s  %-8s %5s  %s\n", "kind", "id", "capture", "created", "version",
+  std::printf("%-12s %6s %8s  %-24s  %-25s %5s  %s\n", "kind", "id", "capture", "created", "version",
               "files", "key figure");
   for (const Result& r : results)
-    std::printf("%-12s %6lld %8lld  %-24s  %-8s %5lld  %s\n", r.kind.c_str(), static_cast<long long>(r.id),
+    std::printf("%-12s %6lld %8lld  %-24s  %-25s %5lld  %s\n", r.kind.c_str(), static_cast<long long>(r.id),
                 static_cast<long long>(r.capture_id), r.created_at.c_str(), r.version.c_str(),
                 static_cast<long long>(r.files), r.key.c_str());
   return 0;

@@ -2,6 +2,7 @@
 // participants run through hapticd, the sessions in a store, the tidy export
 // and the analysis (docs/studies.md).
 #include <algorithm>
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -19,6 +20,7 @@
 #include "commands.hpp"
 #include "progress.hpp"
 #include "figure_args.hpp"
+#include "knoblab/control/client.hpp"
 #include "knoblab/hal/shared_hand_channel.hpp"
 #include "knoblab/study/participant.hpp"
 #include "knoblab/study/protocol.hpp"
@@ -100,6 +102,29 @@ std::string read_text(const std::string& path) {
 
 std::string simulated_code(long long n) { return std::format("SIM{:02}", n); }
 
+
+// A simulated participant steers the knob through hapticd's sim backend's
+// guided hand: without one (or on another channel) every trial would wait
+// for a hand that never moves, so say so before anything is stored.
+void refuse_unless_hapticd_guides(const std::string& socket, const std::string& hand_name) {
+  nlohmann::json state;
+  try {
+    control::Client c(socket, std::chrono::seconds(5));
+    c.hello();
+    state = c.call("get_state");
+  } catch (const std::exception& e) {
+    throw std::runtime_error("cannot ask hapticd at " + socket + " for its state: " + e.what());
+  }
+  const auto& channel = state.contains("hand_channel") ? state["hand_channel"] : nlohmann::json();
+  if (!channel.is_string())
+    throw UsageError("hapticd at " + socket + " has no guided hand for a simulated participant: give its sim "
+                     "backend one (\"daq\": {\"backend\": \"sim\", \"hand\": {\"channel\": \"" + hand_name +
+                     "\"}}, docs/hal.md), or run the session in simulated time (--in-process)");
+  if (channel.get<std::string>() != hand_name)
+    throw UsageError("hapticd's guided hand listens on " + channel.get<std::string>() + ", not " + hand_name +
+                     ": pass --hand " + channel.get<std::string>());
+}
+
 int simulate(const Args& args, const std::string& protocol_path) {
   const std::string text = read_text(protocol_path);
   const study::Protocol protocol = [&] {
@@ -128,7 +153,9 @@ int simulate(const Args& args, const std::string& protocol_path) {
     hand = &core->hand();
     apparatus = std::move(core);
   } else {
-    shared_hand.emplace(args.get("hand").value_or("/knoblab-sim-hand"));
+    const std::string hand_name = args.get("hand").value_or("/knoblab-sim-hand");
+    refuse_unless_hapticd_guides(hapticd_socket(args), hand_name);
+    shared_hand.emplace(hand_name);
     hand = &shared_hand->channel();
     apparatus = std::make_unique<studyrun::HapticdApparatus>(hapticd_socket(args));
   }

@@ -29,6 +29,11 @@ Checks, in order:
                 drops AMP_EN and LED_STATUS, and the stored capture says
                 "fault: estop"
   estop_clear   released and cleared, the fault list is empty again
+  overrun       hapticd restarted at 20 kHz with the supervisor's own overrun
+                limit (the image's drop-in lifts it under emulation), asked
+                to render: its cycles outlast their 50 µs period, the overruns
+                fault latches, AMP_EN and LED_STATUS drop and the loop runs
+                on; then hapticd as the image runs it again
   amp_comms     the Modbus simulator killed mid-capture latches amp_comms and
                 the stored capture says so; cleared once it is back
   power_cut     QEMU killed mid-trial of a study session (a simulated
@@ -83,6 +88,10 @@ STUDY_LOG = "/var/lib/knoblab/study-before-cut.log"
 # commits takes a minute or more.
 POWER_CUT_WAIT_S = 600
 SESSION_RUNS = 4
+# The overrun check's hapticd: at 20 kHz every emulated cycle outlasts its
+# period; the supervisor's default limit (10 consecutive overruns) applies.
+OVERRUN_DROPIN = "/run/systemd/system/hapticd.service.d/zz-overrun-check.conf"
+OVERRUN_OPTS = "--rate 20000"
 
 # Shell functions defined once in the guest's shell: an event caught by a
 # watcher that subscribes before whatever causes it (`watch_event NAME`, then
@@ -332,6 +341,7 @@ def first_boot(boot, args, report, check):
         guarded("discrepancy", check_discrepancy, con, report, check, capture_id)
     guarded("estop", check_estop, con, report, check)
     guarded("amp_comms", check_amp_comms, con, report, check)
+    guarded("overrun", check_overrun, con, report, check)
     return start_power_cut(con, report)
 
 
@@ -504,6 +514,57 @@ def check_amp_enabled(con, check):
     amp = out.strip().splitlines()[-1:]
     check("amp_enabled", rc == 0 and amp == ["1"], f"set_mode render exit {rc}, AMP_EN {amp}")
     con.run(f"{CTL} set_mode mode=idle >/dev/null")
+
+
+def restart_hapticd(con, timeout=300):
+    """systemctl restart hapticd, then get_state once it answers with its
+    loop running ({} if it never did)."""
+    con.run("systemctl daemon-reload && systemctl restart hapticd", timeout=120)
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        rc, out = con.run(f"{CTL} get_state 2>/dev/null")
+        state = parse_json(out) if rc == 0 else None
+        if state and state.get("cycles", 0) > 0:
+            return state
+        time.sleep(1)
+    return {}
+
+
+def check_overrun(con, report, check):
+    """The supervisor's overrun path end to end, although the image's loop
+    runs slowed under emulation: hapticd at 20 kHz with its default overrun
+    limit, asked to render; its cycles cannot keep their period, so the
+    overruns fault latches, the motor goes safe (AMP_EN and the status LED
+    low, render refused) and the loop runs on, counting them."""
+    con.run(f"mkdir -p {os.path.dirname(OVERRUN_DROPIN)} && "
+            f"printf '[Service]\\nEnvironment=\"HAPTICD_OPTS={OVERRUN_OPTS}\"\\n' > {OVERRUN_DROPIN}")
+    try:
+        started = restart_hapticd(con)
+        con.run(f"{CTL} set_mode mode=render >/dev/null 2>&1")
+        state, deadline = {}, time.monotonic() + 60
+        while time.monotonic() < deadline:
+            rc, out = con.run(f"{CTL} get_state")
+            state = (parse_json(out) if rc == 0 else None) or {}
+            if "overruns" in state.get("faults", []):
+                break
+            time.sleep(1)
+        time.sleep(1)  # the safe state is taken in the cycle that latched; give the line a moment
+        rc, out = con.run(f"{LINE} AMP_EN; {LINE} LED_STATUS; {CTL} get_state; {CTL} set_mode mode=render")
+        lines = out.strip().splitlines()
+        after = parse_json(out) or {}
+        refused = "fault is latched" in out
+    finally:
+        con.run(f"rm -f {OVERRUN_DROPIN}")
+        again = restart_hapticd(con)
+    report["overrun"] = {"options": OVERRUN_OPTS, "started": started, "latched": state, "after": after,
+                         "lines": lines[:2], "render_refused": refused, "restored": again}
+    ok = ("overruns" in state.get("faults", []) and lines[:2] == ["0", "0"] and refused and
+          after.get("cycles", 0) > state.get("cycles", 0) and again.get("faults") == [] and
+          again.get("rate_hz") == 2000)
+    check("overrun", ok,
+          f"at {state.get('rate_hz')} Hz faults {state.get('faults')}; then AMP_EN, LED_STATUS {lines[:2]}, "
+          f"render refused {refused}, cycles {state.get('cycles')} → {after.get('cycles')}; "
+          f"restored at {again.get('rate_hz')} Hz, faults {again.get('faults')}")
 
 
 def caught_event(con, command, seconds):

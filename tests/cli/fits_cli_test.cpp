@@ -92,23 +92,23 @@ class FitsCli : public ::testing::Test {
 };
 
 const char* const kHeader =
-    "    id  capture  model    created                     rmse_Nm  fit_% detents/rev files  version  input\n";
+    "    id  capture  model    created                     rmse_Nm  fit_% detents/rev files  version                   input\n";
 
 TEST_F(FitsCli, ListsEveryFitWithItsKeyFigures) {
   const RunResult r = run_knoblab({"fits", "--db", db_});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err, "");
   EXPECT_EQ(r.out, std::string(kHeader) +
-                       "     1        1  thesis6  " + created_[0] + "  0.0001235   93.5       12.00     5  -        -\n"
-                       "     2        2  render4  " + created_[1] + "     0.0021   71.0           -     0  -        -\n"
-                       "     3        1  thesis6  " + created_[2] + "          -      -           -     1  -        -\n");
+                       "     1        1  thesis6  " + created_[0] + "  0.0001235   93.5       12.00     5  -                         -\n"
+                       "     2        2  render4  " + created_[1] + "     0.0021   71.0           -     0  -                         -\n"
+                       "     3        1  thesis6  " + created_[2] + "          -      -           -     1  -                         -\n");
 }
 
 TEST_F(FitsCli, ListsTheFitsOfOneCapture) {
   RunResult r = run_knoblab({"fits", "--db", db_, "--capture", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out, std::string(kHeader) + "     2        2  render4  " + created_[1] +
-                       "     0.0021   71.0           -     0  -        -\n");
+                       "     0.0021   71.0           -     0  -                         -\n");
   r = run_knoblab({"fits", "--db", db_, "--capture", "1"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("\n     1        1  thesis6"), std::string::npos) << r.out;

@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -48,6 +49,31 @@ TEST(HapticdConfig, AMistypedModbusSettingIsRefusedWithItsPath) {
   const Started s = hapticd_refusing(dir, {"--config", (dir / "h.json").string(), "--cycles", "10"});
   EXPECT_EQ(s.exit_code, 2);
   EXPECT_NE(s.err.find("modbus.amplifier.prot"), std::string::npos) << s.err;
+}
+
+// "--rate 1000abc" once ran at 1 kHz and "--modbus HOST:99999" polled port
+// 34463: an option is read whole and in range, or refused naming it.
+TEST(HapticdConfig, ANumberOptionWithTrailingTextOrOutOfRangeIsRefusedNamingIt) {
+  ScratchDir dir;
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--rate", "1000abc"}, "--rate wants a number, got '1000abc'"},
+      {{"--rate", "0"}, "--rate must be in"},
+      {{"--rate", "nan"}, "--rate wants a number"},
+      {{"--modbus", "127.0.0.1:99999"}, "--modbus's port must be in 1 … 65535, got 99999"},
+      {{"--modbus", "127.0.0.1:15o2"}, "--modbus's port wants an integer, got '15o2'"},
+      {{"--modbus", ":1502"}, "--modbus wants HOST:PORT"},
+      {{"--priority", "120"}, "--priority must be in 1 … 99"},
+      {{"--cpu", "1x"}, "--cpu wants an integer"},
+      {{"--max-overruns", "0"}, "--max-overruns must be in 1 …"},
+      {{"--cycles", "10.5"}, "--cycles wants an integer"},
+  };
+  for (const auto& [args, said] : cases) {
+    std::vector<std::string> all = args;
+    if (args[0] != "--cycles") all.insert(all.end(), {"--cycles", "10"});
+    const Started s = hapticd_refusing(dir, all);
+    EXPECT_EQ(s.exit_code, 2) << args[0] << " " << args[1];
+    EXPECT_NE(s.err.find(said), std::string::npos) << args[0] << " " << args[1] << ": " << s.err;
+  }
 }
 
 TEST(HapticdConfig, ARealDaqWithInMemoryLinesIsRefusedUnlessAllowed) {

@@ -6,12 +6,14 @@
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <string>
 #include <vector>
 
 #include "knoblab/interchange/digest.hpp"
 #include "knoblab/store/schema.hpp"
 #include "knoblab/store/store.hpp"
+#include "knoblab/version.hpp"
 #include "process.hpp"
 
 namespace knoblab::test {
@@ -85,7 +87,7 @@ TEST_F(ResultsCli, AStoredFitKeepsItsReportFilesAndItsProvenance) {
   EXPECT_EQ(as_map(store.load_fit_files(1)), written);  // the same bytes as the report directory
   EXPECT_EQ(written.at("fit.json"), fit->result + "\n");
   ASSERT_TRUE(fit->provenance);
-  EXPECT_EQ(fit->provenance->tool_version, KNOBLAB_PROJECT_VERSION);
+  EXPECT_EQ(fit->provenance->tool_version, knoblab::kVersion);
   EXPECT_EQ(fit->provenance->input_sha256, sha_[1]);
   EXPECT_EQ(nlohmann::json::parse(fit->provenance->options),
             nlohmann::json::parse(R"({"alpha":"accel","filter":true,"model":"thesis6","detents":"auto",
@@ -96,8 +98,8 @@ TEST_F(ResultsCli, AStoredFitKeepsItsReportFilesAndItsProvenance) {
   ASSERT_EQ(fits.exit_code, 0) << fits.err;
   const auto rows = lines_starting(fits.out, "     1        1  thesis6");
   ASSERT_EQ(rows.size(), 1u) << fits.out;
-  std::string version = KNOBLAB_PROJECT_VERSION;
-  version.resize(8, ' ');
+  std::string version = knoblab::kVersion;
+  version.resize(25, ' ');
   const std::string tail = "    18  " + version + " " + sha_[1].substr(0, 12);
   EXPECT_EQ(rows[0].substr(rows[0].size() - tail.size()), tail) << rows[0];
 }
@@ -115,7 +117,7 @@ TEST_F(ResultsCli, AStoredDiscrepancyResultKeepsItsReportFilesAndItsProvenance) 
   EXPECT_EQ(d->file_count, 21);
   EXPECT_EQ(as_map(store.load_discrepancy_files(1)), written);
   ASSERT_TRUE(d->provenance);
-  EXPECT_EQ(d->provenance->tool_version, KNOBLAB_PROJECT_VERSION);
+  EXPECT_EQ(d->provenance->tool_version, knoblab::kVersion);
   EXPECT_EQ(d->provenance->input_sha256, sha_[1]);
   const auto options = nlohmann::json::parse(d->provenance->options);
   EXPECT_EQ(options["effects"], nlohmann::json::parse(R"(["offset", "gravity"])"));
@@ -133,15 +135,16 @@ TEST_F(ResultsCli, ListsFitsAndDiscrepancyResultsTogetherAndWritesOneOutWhole) {
   RunResult r = run_knoblab({"results", "--db", db_});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err, "");
-  const std::string version = KNOBLAB_PROJECT_VERSION;
+  std::string version = knoblab::kVersion;
   ASSERT_EQ(lines_starting(r.out, "kind ").size(), 1u) << r.out;
   const auto fit_rows = lines_starting(r.out, "fit               1        1  ");
   ASSERT_EQ(fit_rows.size(), 1u) << r.out;
-  EXPECT_NE(fit_rows[0].find("  " + version + "       18  rmse "), std::string::npos) << fit_rows[0];
+  version.resize(25, ' ');
+  EXPECT_NE(fit_rows[0].find("  " + version + "    18  rmse "), std::string::npos) << fit_rows[0];
   EXPECT_NE(fit_rows[0].find(" mN·m, 12.00 detents/rev"), std::string::npos) << fit_rows[0];
   const auto d_rows = lines_starting(r.out, "discrepancy       1        1  ");
   ASSERT_EQ(d_rows.size(), 1u) << r.out;
-  EXPECT_NE(d_rows[0].find("  " + version + "       21  held-out rms "), std::string::npos) << d_rows[0];
+  EXPECT_NE(d_rows[0].find("  " + version + "    21  held-out rms "), std::string::npos) << d_rows[0];
   EXPECT_LT(r.out.find("\nfit "), r.out.find("\ndiscrepancy "));  // oldest first
 
   r = run_knoblab({"results", "--db", db_, "--json"});
@@ -236,14 +239,14 @@ INSERT INTO discrepancies (id, capture_id, heldout_capture_id, result, created_a
   RunResult r = run_knoblab({"results", "--db", db});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out,
-            "kind             id  capture  created                   version  files  key figure\n"
-            "discrepancy       3        2  2024-04-01T10:00:00.000Z  -            0  held-out rms 9.57 → 1.5 mN·m, 2 findings\n"
-            "fit               4        1  2024-05-01T10:00:00.000Z  -            2  rmse 2 mN·m, 12.00 detents/rev\n");
+            "kind             id  capture  created                   version                   files  key figure\n"
+            "discrepancy       3        2  2024-04-01T10:00:00.000Z  -                             0  held-out rms 9.57 → 1.5 mN·m, 2 findings\n"
+            "fit               4        1  2024-05-01T10:00:00.000Z  -                             2  rmse 2 mN·m, 12.00 detents/rev\n");
   EXPECT_EQ(store::Store::open(db).schema_version(), store::latest_schema_version());  // upgraded on the way
 
   r = run_knoblab({"fits", "--db", db});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("     2  -        -\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("    2  -                         -\n"), std::string::npos) << r.out;
 
   r = run_knoblab({"results", "3", "--kind", "discrepancy", "--db", db});
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -260,8 +263,15 @@ INSERT INTO discrepancies (id, capture_id, heldout_capture_id, result, created_a
   EXPECT_EQ(j["report"].size(), 2u);
 }
 
+TEST(CliVersion, TheVersionNamesTheCommitBuiltAndWhetherTheTreeDifferedFromIt) {
+  // What a stored result's provenance carries: a release number alone would
+  // say the same for every build.
+  EXPECT_TRUE(std::regex_match(knoblab::kVersion, std::regex(R"(\d+\.\d+\.\d+\+(g[0-9a-f]{12}(\.dirty)?|unknown))")))
+      << knoblab::kVersion;
+}
+
 TEST(CliVersion, KnoblabAndEveryCommandPrintTheProjectVersion) {
-  const std::string expected = std::string("knoblab ") + KNOBLAB_PROJECT_VERSION + "\n";
+  const std::string expected = std::string("knoblab ") + knoblab::kVersion + "\n";
   for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
            {"--version"}, {"fit", "--version"}, {"results", "--version"}, {"simulate", "--version"}}) {
     const RunResult r = run_knoblab(args);

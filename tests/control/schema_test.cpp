@@ -191,6 +191,26 @@ TEST(Schema, ValuesOutsideTheirRangeAreRefused) {
   }
 }
 
+// A tab in a knob's name once reached the store thread, which threw and took
+// hapticd down: every text is refused at the protocol, naming its key.
+TEST(Schema, EveryTextWithAControlCharacterIsRefusedNamingTheKey) {
+  int texts = 0;
+  for (const auto& k : every_key()) {
+    if (k.spec->type != ArgType::string && k.spec->type != ArgType::label) continue;
+    ++texts;
+    for (const std::string& bad : std::vector<std::string>{"a\tb", "a\nb", std::string("a\0b", 3), "a\x7f", "\x1b[2J"}) {
+      const auto p = validate_args(args_with(k, bad), command_spec(k.command).args);
+      ASSERT_TRUE(p) << k.path << " accepted " << json(bad).dump();
+      EXPECT_EQ(p->key, k.path);
+      EXPECT_NE(p->problem.find("one line of text"), std::string::npos) << p->problem;
+    }
+    // Text beyond ASCII is still text.
+    const auto p = validate_args(args_with(k, "\u00e4\u2013\u65cb"), command_spec(k.command).args);
+    EXPECT_TRUE(!p || p->key != k.path) << k.path << ": " << p->problem;
+  }
+  EXPECT_GE(texts, 4);
+}
+
 TEST(Schema, UnknownKeysAreRefusedAtEveryLevel) {
   for (const auto& c : command_table()) {
     json args = json::parse(c.example_args);

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -218,6 +219,25 @@ TEST(Telemetry, WriterReplacesALeftoverRing) {
   TelemetryReader r(cfg.shm_name, TelemetryReader::Start::oldest);
   std::vector<TelemetryRecord> out(2);
   EXPECT_EQ(r.read(out).count, 1u);
+}
+
+// A second daemon started by mistake once unlinked the running one's ring
+// (readers then failed with "shm_open: No such file"): a ring whose writer
+// lives is refused and left as it was.
+TEST(Telemetry, ASecondWriterRefusesARingWhoseWriterIsAliveAndLeavesItAlone) {
+  const auto cfg = config_for("alive", 16, 1);
+  TelemetryWriter first(cfg);
+  first.push(counter_sample(0));
+  try {
+    TelemetryWriter second(cfg);
+    FAIL() << "a second writer took a live ring";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("in use by a running daemon"), std::string::npos) << e.what();
+  }
+  first.push(counter_sample(1));
+  TelemetryReader r(cfg.shm_name, TelemetryReader::Start::oldest);
+  std::vector<TelemetryRecord> out(4);
+  EXPECT_EQ(r.read(out).count, 2u);  // the first writer's ring, both records
 }
 
 // Writer and readers at full speed on a tiny ring for 0.4 s: overruns happen

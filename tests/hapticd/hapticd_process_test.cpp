@@ -16,7 +16,10 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <string>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "knoblab/control/client.hpp"
 #include "knoblab/control/framing.hpp"
@@ -154,6 +157,35 @@ TEST(HapticdProcess, FuzzedControlInputNeverCrashesIt) {
     }
   }
   EXPECT_TRUE(answers(d.socket()));
+  EXPECT_EQ(d.terminate(), 0) << d.log();
+}
+
+// A tab in a knob's name was answered "ok", then the store thread threw and
+// hapticd aborted; a capture too short for one cycle was taken and never
+// finished. Both are refused at the request, naming the key, and hapticd
+// goes on serving.
+TEST(HapticdProcess, UnstorableTextAndACaptureOfNoCycleAreRefusedAndHapticdLivesOn) {
+  Hapticd d({"--rate", "20"});  // 0.01 s, the shortest capture the schema takes, is no cycle at 20 Hz
+  control::Client c(d.socket(), std::chrono::seconds(5));
+  c.hello();
+  const nlohmann::json sweep = {{"a", 0}, {"b", 1.5}, {"c", 1}, {"d", 3}};
+  const std::vector<std::pair<nlohmann::json, std::string>> refused = {
+      {{{"seconds", 1.0}, {"knob", "a\tb"}, {"swept_sine", sweep}}, "knob"},
+      {{{"seconds", 1.0}, {"knob", "k"}, {"notes", "line 1\nline 2"}, {"swept_sine", sweep}}, "notes"},
+      {{{"seconds", 0.01}, {"knob", "k"}, {"swept_sine", sweep}}, "seconds"},
+  };
+  for (const auto& [args, key] : refused) {
+    try {
+      c.call("start_capture", args);
+      ADD_FAILURE() << "start_capture " << args.dump() << " was accepted";
+    } catch (const control::RemoteError& e) {
+      EXPECT_EQ(e.code(), control::ErrorCode::bad_args) << e.what();
+      EXPECT_EQ(e.error().key, key) << e.what();
+    }
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  ASSERT_TRUE(d.alive()) << d.log();
+  EXPECT_EQ(c.call("get_state").at("recording"), false);
   EXPECT_EQ(d.terminate(), 0) << d.log();
 }
 

@@ -11,6 +11,7 @@
 #include <future>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "knoblab/hapticd/recorder.hpp"
@@ -274,6 +275,31 @@ TEST(Recorder, KeepsEverySampleWhileAnotherConnectionHoldsTheWriteLock) {
   EXPECT_EQ(after.buffered, 0u);
   EXPECT_EQ(after.max_buffered, 20000u);
   EXPECT_EQ(after.failed, 0u);
+}
+
+// A biometrics box restarted mid-trial counts from 0 again: the trial once
+// lost all its biometrics to the store's UNIQUE (capture_id, seq).
+TEST(Recorder, ABiometricsBoxWhoseCounterRestartsMidRecordingKeepsEverySampleInOrder) {
+  TempDb db{"recorder"};
+  store::Store s = store::Store::open(db.path());
+  Recorder rec(&s, defaults());
+  feed(rec, 0, 100, 0);
+  feed(rec, 100, 2100, 1);
+  // monotonic 1.0 s is t = 0; the box restarts after its sample 42.
+  const std::vector<std::pair<std::int64_t, double>> box = {{40, 1.01}, {41, 1.02}, {42, 1.03}, {0, 1.10}, {1, 1.11}};
+  for (const auto& [counter, when] : box) rec.add_biometrics({counter, when, 1e-6, 2e-6, 3e-6});
+  feed(rec, 2100, 2200, 0);
+  rec.close();
+  drain(rec);
+  const auto fin = rec.take_finished();
+  ASSERT_EQ(fin.size(), 1u);
+  EXPECT_TRUE(fin[0].complete) << fin[0].end_reason;
+  const auto bio = reader(db).load_biometrics(fin[0].capture_id);
+  ASSERT_EQ(bio.size(), box.size());
+  for (std::size_t i = 0; i < bio.size(); ++i) {
+    EXPECT_EQ(bio[i].seq, 40 + static_cast<std::int64_t>(i)) << i;
+    EXPECT_NEAR(bio[i].t, box[i].second - 1.0, 1e-9) << i;
+  }
 }
 
 TEST(Recorder, ARecordingThatOutgrowsItsBufferIsCutAndAsksForTheSafeState) {

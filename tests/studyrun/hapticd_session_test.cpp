@@ -246,5 +246,29 @@ TEST(StudyThroughHapticd, KilledMidSessionWithHapticdItResumesAtTheNextTrialAndL
   expect_recorded(rig.db(), after, true);
 }
 
+// Without a guided hand on hapticd's sim backend the simulated participant
+// has nothing to steer: the command once waited 60 s and left an open
+// session and a stray capture. It refuses before it stores anything.
+TEST(StudyThroughHapticd, AHapticdWithoutAGuidedHandIsRefusedAtOnceAndNothingIsStored) {
+  ScratchDir dir;
+  const std::string socket = (dir / "h.sock").string(), db = (dir / "lab.sqlite").string();
+  const pid_t hapticd = spawn({KNOBLAB_HAPTICD_PATH, "--backend", "sim", "--knob", "moderate-detents", "--rate", "1000",
+                               "--socket", socket, "--db", db, "--max-overruns", "1000000"},
+                              (dir / "hapticd.out").string(), (dir / "hapticd.err").string());
+  ASSERT_GT(hapticd, 0);
+  ASSERT_TRUE(eventually([&] { return run_knoblab({"ctl", "--socket", socket, "get_state"}).exit_code == 0; }))
+      << read_file(dir / "hapticd.err");
+  const RunResult r = run_knoblab({"study", "simulate", std::string(KNOBLAB_STUDY_EXAMPLES_DIR) + "/textures.json",
+                                   "--participants", "1", "--db", db, "--socket", socket});
+  ::kill(hapticd, SIGTERM);
+  wait_exit(hapticd, 10s);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("has no guided hand for a simulated participant"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("\"hand\": {\"channel\": \"/knoblab-sim-hand\"}"), std::string::npos) << r.err;
+  auto store = store::Store::open(db);
+  EXPECT_TRUE(store.study_sessions("study1-textures").empty());
+  EXPECT_TRUE(store.list_captures().empty());
+}
+
 }  // namespace
 }  // namespace knoblab::test

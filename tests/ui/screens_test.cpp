@@ -212,32 +212,39 @@ INSTANTIATE_TEST_SUITE_P(AtPanelSizes, PrototyperScreens, ::testing::Values("102
                            return name;
                          });
 
-TEST(Screens, WithoutHapticdTheScreensStillRenderAndSayTheDaemonIsMissing) {
+// The screenshot is written and says so, but the run fails: a check that
+// renders the kiosk must not pass on a screen that read nothing.
+TEST(Screens, WithoutHapticdTheScreensRenderSayUnknownNotOkAndTheScreenshotFails) {
   ScratchDir dir;
   const std::filesystem::path png = dir / "home.png";
   const Shot s = screenshot((dir / "nobody.sock").string(), (dir / "none.sqlite").string(), "home", "1024x600", png, "0.5");
-  EXPECT_EQ(s.exit_code, 0) << s.err;
+  EXPECT_EQ(s.exit_code, 1) << s.err;
   EXPECT_FALSE(s.image.isNull());
   EXPECT_EQ(named(s.out, "connection"), "○ hapticd lost") << s.out;
   EXPECT_EQ(named(s.out, "loop"), "loop –") << s.out;
+  EXPECT_EQ(named(s.out, "estop"), "e-stop unknown") << s.out;
+  EXPECT_EQ(named(s.out, "amplifier"), "amplifier unknown") << s.out;
+  EXPECT_EQ(named(s.out, "modbus"), "Modbus unknown") << s.out;
   EXPECT_NE(named(s.out, "daemonStatus").find("Waiting for hapticd"), std::string::npos) << s.out;
   EXPECT_NE(s.err.find("no state from hapticd"), std::string::npos) << s.err;
 }
 
-TEST(Screens, AnUnknownScreenIsNamedInTheMessageBarNotAWarning) {
+TEST(Screens, AnUnknownScreenIsRefusedNamingTheScreensThereAre) {
   ScratchDir dir;
   const Shot s = screenshot((dir / "nobody.sock").string(), (dir / "none.sqlite").string(), "warp", "1024x600",
                             dir / "x.png", "0");
-  EXPECT_EQ(s.exit_code, 0) << s.err;
-  EXPECT_NE(named(s.out, "message"), "") << s.out;
-  EXPECT_NE(named(s.out, "message").find("no screen called warp"), std::string::npos) << s.out;
+  EXPECT_EQ(s.exit_code, 2) << s.err;
+  EXPECT_NE(s.err.find("no screen called warp (screens: home, "), std::string::npos) << s.err;
+  EXPECT_NE(s.err.find("library"), std::string::npos) << s.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
 }
 
 TEST(Screens, AnEmptyLibrarySaysHowToFillIt) {
   ScratchDir dir;
   const Shot s = screenshot((dir / "nobody.sock").string(), (dir / "none.sqlite").string(), "library", "1280x800",
                             dir / "library.png", "0.5");
-  EXPECT_EQ(s.exit_code, 0) << s.err;
+  EXPECT_EQ(s.exit_code, 1) << s.err;  // no hapticd: only that
+  EXPECT_EQ(s.err, "knoblab-ui: no state from hapticd within 0.5 s\n");
   EXPECT_NE(named(s.out, "libraryEmpty").find("No captures yet"), std::string::npos) << s.out;
 }
 

@@ -28,7 +28,7 @@ std::string constraint_text(const ArgSpec& a) {
     case ArgType::integer:
     case ArgType::number: return range_text(a.range);
     case ArgType::string:
-    case ArgType::label: return range_text(a.size) + " bytes";
+    case ArgType::label: return range_text(a.size) + " bytes, one line";
     case ArgType::boolean: return "";
     case ArgType::choice: return choices_text(a.choices);
     case ArgType::integer_list: return range_text(a.size) + " elements, each " + range_text(a.range);

@@ -1,6 +1,7 @@
 // validate_args: walks one ObjectSchema of the table; every check is driven
 // by the ArgSpec, none is specific to a command.
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -86,6 +87,20 @@ Problem check_size(const std::string& key, std::size_t n, Range r, const char* u
 
 Problem validate_object(const json& obj, const ObjectSchema& schema, const std::string& prefix);
 
+// Every text the protocol takes is one line: it ends up in the store, in
+// listings and in CSV metadata, where a tab or a newline would garble them.
+// (The JSON parser has already refused invalid UTF-8.)
+Problem check_text(const std::string& key, const std::string& s, Range size) {
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (const auto c = static_cast<unsigned char>(s[i]); c < 0x20 || c == 0x7f) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "0x%02x", c);
+      return problem(key, "must be one line of text: byte " + std::to_string(i + 1) + " is a control character (" +
+                              hex + ")");
+    }
+  return check_size(key, s.size(), size, "bytes");
+}
+
 Problem validate_value(const std::string& key, const json& j, const ArgSpec& spec) {
   switch (spec.type) {
     case ArgType::integer: return check_integer(key, j, spec.range, "value");
@@ -97,7 +112,7 @@ Problem validate_value(const std::string& key, const json& j, const ArgSpec& spe
       return std::nullopt;
     case ArgType::string:
       if (!j.is_string()) return problem(key, "must be a string (got " + json_type_name(j) + ")");
-      return check_size(key, j.get_ref<const std::string&>().size(), spec.size, "bytes");
+      return check_text(key, j.get_ref<const std::string&>(), spec.size);
     case ArgType::boolean:
       if (!j.is_boolean()) return problem(key, "must be true or false (got " + json_type_name(j) + ")");
       return std::nullopt;
@@ -107,7 +122,7 @@ Problem validate_value(const std::string& key, const json& j, const ArgSpec& spe
     case ArgType::label:
       if (j.is_number_integer()) return check_integer(key, j, {-9.2e18, 9.2e18}, "value");
       if (!j.is_string()) return problem(key, "must be a string or an integer (got " + json_type_name(j) + ")");
-      return check_size(key, j.get_ref<const std::string&>().size(), spec.size, "bytes");
+      return check_text(key, j.get_ref<const std::string&>(), spec.size);
     case ArgType::integer_list:
       if (!j.is_array()) return problem(key, "must be an array of integers (got " + json_type_name(j) + ")");
       if (auto p = check_size(key, j.size(), spec.size, "elements")) return p;

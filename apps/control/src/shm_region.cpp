@@ -1,6 +1,7 @@
 #include "shm_region.hpp"
 
 #include <fcntl.h>
+#include <sys/file.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -31,11 +32,17 @@ ShmRegion ShmRegion::create(const std::string& name, std::size_t size, mode_t mo
   check_name(name);
   UniqueFd fd(::shm_open(name.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, mode));
   if (!fd && errno == EEXIST) {
-    // Left by a daemon that died; readers still mapping it keep the old object.
+    // Left by a daemon that died (its lock went with it), or a running
+    // daemon's: a second one started by mistake must not take it away.
+    UniqueFd old(::shm_open(name.c_str(), O_RDONLY | O_CLOEXEC, 0));
+    if (old && ::flock(old.get(), LOCK_EX | LOCK_NB) != 0 && errno == EWOULDBLOCK)
+      throw std::runtime_error("telemetry shm " + name + ": in use by a running daemon; not replacing it");
+    // Readers still mapping the dead one keep the old object.
     ::shm_unlink(name.c_str());
     fd = UniqueFd(::shm_open(name.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, mode));
   }
   if (!fd) fail(name, "shm_open", errno);
+  if (::flock(fd.get(), LOCK_EX | LOCK_NB) != 0) fail(name, "flock", errno);
 
   ShmRegion r;
   r.unlink_name_ = name;  // from here on, failures unlink it again
@@ -47,6 +54,7 @@ ShmRegion ShmRegion::create(const std::string& name, std::size_t size, mode_t mo
     if (addr == MAP_FAILED) fail(name, "mmap", errno);
     r.addr_ = addr;
     r.size_ = size;
+    r.owner_lock_ = std::move(fd);
   } catch (...) {
     ::shm_unlink(name.c_str());
     r.unlink_name_.clear();
@@ -72,7 +80,10 @@ ShmRegion ShmRegion::open_read_only(const std::string& name) {
 }
 
 ShmRegion::ShmRegion(ShmRegion&& o) noexcept
-    : addr_(std::exchange(o.addr_, nullptr)), size_(std::exchange(o.size_, 0)), unlink_name_(std::move(o.unlink_name_)) {
+    : addr_(std::exchange(o.addr_, nullptr)),
+      size_(std::exchange(o.size_, 0)),
+      unlink_name_(std::move(o.unlink_name_)),
+      owner_lock_(std::move(o.owner_lock_)) {
   o.unlink_name_.clear();
 }
 
@@ -83,6 +94,7 @@ ShmRegion& ShmRegion::operator=(ShmRegion&& o) noexcept {
     size_ = std::exchange(o.size_, 0);
     unlink_name_ = std::move(o.unlink_name_);
     o.unlink_name_.clear();
+    owner_lock_ = std::move(o.owner_lock_);
   }
   return *this;
 }
@@ -92,6 +104,7 @@ ShmRegion::~ShmRegion() { release(); }
 void ShmRegion::release() noexcept {
   if (addr_) ::munmap(addr_, size_);
   if (!unlink_name_.empty()) ::shm_unlink(unlink_name_.c_str());
+  owner_lock_.reset();  // after the unlink: no one may take the name while it is ours
   addr_ = nullptr;
   size_ = 0;
   unlink_name_.clear();

@@ -8,13 +8,17 @@
 #include <optional>
 #include <string>
 
+#include "unique_fd.hpp"
+
 namespace knoblab::control::detail {
 
 class ShmRegion {
  public:
   // Replaces any leftover object of that name (a dead daemon's), sizes it,
   // sets mode and group, and maps it read-write with its pages populated so
-  // the realtime writer never page-faults on first touch.
+  // the realtime writer never page-faults on first touch. The owner holds
+  // an exclusive flock on it while it lives: an object whose lock is held
+  // belongs to a running daemon and is refused, never removed.
   static ShmRegion create(const std::string& name, std::size_t size, mode_t mode, std::optional<gid_t> gid);
   // Maps an existing object read-only.
   static ShmRegion open_read_only(const std::string& name);
@@ -35,6 +39,7 @@ class ShmRegion {
   void* addr_ = nullptr;
   std::size_t size_ = 0;
   std::string unlink_name_;  // set for the owner
+  UniqueFd owner_lock_;      // the owner's open fd, flocked exclusively
 };
 
 }  // namespace knoblab::control::detail

@@ -104,6 +104,7 @@ json ControlHandler::state_json() const {
   j["cycles"] = s.cycles;
   j["capture_button_presses"] = s.button_presses;
   j["rate_hz"] = daemon_.config().core.rate_hz;
+  j["hand_channel"] = daemon_.config().hand_channel.empty() ? json(nullptr) : json(daemon_.config().hand_channel);
   j["modbus"] = modbus::status::describe(daemon_.modbus_status());
   j["ring_dropped"] = daemon_.ring_dropped();
   j["tiles"] = tiles_;
@@ -233,11 +234,18 @@ Reply ControlHandler::start_capture(const json& a) {
   labels.mounting = a.value("mounting", "lab");
   if (a.contains("gripper")) labels.metadata["gripper"] = a.at("gripper");
   if (a.contains("notes")) labels.metadata["notes"] = a.at("notes");
+  // A capture shorter than one cycle would record nothing and never finish.
+  const double seconds = a.at("seconds").get<double>();
+  const auto samples = static_cast<std::int64_t>(std::llround(seconds * daemon_.config().core.rate_hz));
+  if (samples < 1) {
+    char why[96];
+    std::snprintf(why, sizeof why, "is shorter than one cycle of the %g Hz loop: no sample would be taken",
+                  daemon_.config().core.rate_hz);
+    return Reply::failure(ErrorCode::bad_args, why, "seconds");
+  }
   std::string why;
-  if (!daemon_.start_capture(cc, a.at("seconds").get<double>(), labels, why))
-    return Reply::failure(ErrorCode::busy, why);
-  return Reply::success({{"samples", static_cast<std::int64_t>(
-                                         std::llround(a.at("seconds").get<double>() * daemon_.config().core.rate_hz))}});
+  if (!daemon_.start_capture(cc, seconds, labels, why)) return Reply::failure(ErrorCode::busy, why);
+  return Reply::success({{"samples", samples}});
 }
 
 // The core refuses these too; saying so here tells the client why.

@@ -4,11 +4,13 @@
 //   hapticd --backend sim --knob moderate-detents --db /var/lib/knoblab/lab.sqlite
 //           --socket /run/knoblab/hapticd.sock
 //   hapticd --backend sim --rate 10000 --cycles 200000 --free-run --stats-json bench.json
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -82,6 +84,40 @@ std::string need(const std::vector<std::string>& a, std::size_t& i) {
   return a[++i];
 }
 
+// A number option, whole and in range: std::stod would take "1000abc" as 1000
+// and a port of 99999 would wrap to 34463 in a uint16_t.
+double number_option(const std::string& key, const std::string& text, double lo, double hi) {
+  std::size_t used = 0;
+  double v = 0.0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || !std::isfinite(v))
+    throw UsageError(key + " wants a number, got '" + text + "'");
+  if (!(v >= lo && v <= hi)) {
+    char range[64];
+    std::snprintf(range, sizeof range, "%g … %g", lo, hi);
+    throw UsageError(key + " must be in " + range + ", got " + text);
+  }
+  return v;
+}
+
+long long integer_option(const std::string& key, const std::string& text, long long lo, long long hi) {
+  std::size_t used = 0;
+  long long v = 0;
+  try {
+    v = std::stoll(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size()) throw UsageError(key + " wants an integer, got '" + text + "'");
+  if (v < lo || v > hi)
+    throw UsageError(key + " must be in " + std::to_string(lo) + " … " + std::to_string(hi) + ", got " + text);
+  return v;
+}
+
 // The --config file: each section goes to the part that owns it; a key no
 // part owns is a mistake (a typo such as "modbs" would otherwise leave the
 // amplifier unsupervised without a word).
@@ -149,11 +185,11 @@ Options parse(const std::vector<std::string>& a) {
     } else if (k == "--lines-config") {
       o.lines = knoblab::hal::load_config_file(need(a, i));
     } else if (k == "--rate") {
-      o.cfg.core.rate_hz = std::stod(need(a, i));
+      o.cfg.core.rate_hz = number_option(k, need(a, i), 1.0, 20000.0);
     } else if (k == "--priority") {
-      o.cfg.loop.priority = std::stoi(need(a, i));
+      o.cfg.loop.priority = static_cast<int>(integer_option(k, need(a, i), 1, 99));
     } else if (k == "--cpu") {
-      o.cfg.loop.cpu = std::stoi(need(a, i));
+      o.cfg.loop.cpu = static_cast<int>(integer_option(k, need(a, i), -1, 4095));
     } else if (k == "--socket") {
       o.cfg.socket_path = need(a, i);
     } else if (k == "--group") {
@@ -165,18 +201,19 @@ Options parse(const std::vector<std::string>& a) {
     } else if (k == "--modbus") {
       const std::string hp = need(a, i);
       const auto colon = hp.rfind(':');
-      if (colon == std::string::npos) throw UsageError("--modbus wants HOST:PORT");
+      if (colon == std::string::npos || colon == 0) throw UsageError("--modbus wants HOST:PORT, got '" + hp + "'");
+      const auto port = static_cast<std::uint16_t>(integer_option("--modbus's port", hp.substr(colon + 1), 1, 65535));
       knoblab::modbus::PollerConfig pc;
       for (auto* e : {&pc.amplifier, &pc.biometrics}) {
         e->host = hp.substr(0, colon);
-        e->port = static_cast<std::uint16_t>(std::stoi(hp.substr(colon + 1)));
+        e->port = port;
       }
       o.cfg.modbus = pc;
     } else if (k == "--max-overruns") {
-      o.cfg.core.limits.max_consecutive_overruns = std::stoi(need(a, i));
-      if (o.cfg.core.limits.max_consecutive_overruns < 1) throw UsageError("--max-overruns must be at least 1");
+      o.cfg.core.limits.max_consecutive_overruns =
+          static_cast<int>(integer_option(k, need(a, i), 1, std::numeric_limits<int>::max()));
     } else if (k == "--cycles") {
-      o.cfg.loop.max_cycles = std::stoll(need(a, i));
+      o.cfg.loop.max_cycles = integer_option(k, need(a, i), 1, std::numeric_limits<long long>::max());
     } else if (k == "--model") {
       o.cfg.initial_model = read_model_file(need(a, i));
     } else if (k == "--calibration") {
@@ -201,6 +238,9 @@ Options parse(const std::vector<std::string>& a) {
   }
   if (o.daq.value("backend", "") == "sim") o.daq["rate_hz"] = o.cfg.core.rate_hz;
   o.cfg.knob = o.daq.value("knob", "");
+  if (o.daq.value("backend", "") == "sim" && o.daq.contains("hand") && o.daq["hand"].is_object() &&
+      o.daq["hand"].contains("channel") && o.daq["hand"]["channel"].is_string())
+    o.cfg.hand_channel = o.daq["hand"]["channel"].get<std::string>();
   check_lines_for_a_real_daq(o);
   if (o.cfg.initial_model)
     if (const auto p = knoblab::hapticd::render_params_problem(*o.cfg.initial_model, o.cfg.core.limits))

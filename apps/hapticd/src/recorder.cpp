@@ -81,6 +81,8 @@ void Recorder::start(const LoopRecord& r) {
   std::lock_guard lock(bio_mutex_);
   bio_.clear();
   start_s_ = static_cast<double>(r.now_ns) * 1e-9 - r.sample.t;
+  bio_seq_offset_ = 0;
+  bio_last_seq_ = -1;
   bio_open_ = true;
 }
 
@@ -368,6 +370,11 @@ void Recorder::add_biometrics(const store::BiometricSample& b) {
   if (!bio_open_) return;
   store::BiometricSample s = b;
   s.t -= start_s_;
+  // A counter that went back (a restarted box) would repeat a stored seq,
+  // and the store refuses the whole batch: number on from the last one.
+  if (s.seq + bio_seq_offset_ <= bio_last_seq_) bio_seq_offset_ = bio_last_seq_ + 1 - s.seq;
+  s.seq += bio_seq_offset_;
+  bio_last_seq_ = s.seq;
   bio_.push_back(s);
 }
 

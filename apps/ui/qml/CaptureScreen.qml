@@ -10,6 +10,7 @@ import "wizard.mjs" as Wizard
 
 Item {
     id: wizard
+    objectName: "captureWizard"
     required property DaemonLink link
     required property KnobLibrary knobs
     required property JobRunner jobs
@@ -28,6 +29,9 @@ Item {
     property string phase: "idle"  // capture: idle | running | stored | failed; results: fit | discrepancy | done | failed
     property var verification: null  // the spatial calibration's Table 4
     property int gravityRuns: 0
+    // Each gravity run turns one revolution each way in this time (the
+    // thesis' ~16 s: slow enough that friction and inertia average out).
+    property real gravitySeconds: 16
     property string gravityState: "none"  // none | running | accepted | failed
     // knobs.entries named so that the entry follows each re-read of the library.
     readonly property var entry: captureId > 0 && knobs.entries.length >= 0 ? knobs.entry(captureId) : null
@@ -67,7 +71,7 @@ Item {
     }
     function runGravity() {
         wizard.gravityState = "running";
-        wizard.link.request("calibrate", { kind: "gravity" });
+        wizard.link.request("calibrate", { kind: "gravity", gravity_seconds: wizard.gravitySeconds });
     }
 
     Timer {
@@ -100,7 +104,7 @@ Item {
                     if (!data.ok) {
                         wizard.gravityState = "failed";
                     } else if (++wizard.gravityRuns < 3) {
-                        wizard.link.request("calibrate", { kind: "gravity" });
+                        wizard.link.request("calibrate", { kind: "gravity", gravity_seconds: wizard.gravitySeconds });
                     } else {
                         // Accepted when hapticd says so (it refuses if the runs do not qualify).
                         wizard.link.request("accept_calibration", { kind: "gravity" });

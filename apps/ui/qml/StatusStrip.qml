@@ -48,22 +48,24 @@ Rectangle {
         }
         Reading {
             objectName: "mode"
-            text: strip.link.mode !== "" ? strip.link.mode : "–"
+            text: strip.link.stateKnown && strip.link.mode !== "" ? strip.link.mode : "–"
         }
+        // Without a state read from a live hapticd these say "unknown", not
+        // "ok": the e-stop may be pressed for all the kiosk knows.
         Reading {
             objectName: "estop"
-            text: strip.link.estop ? "E-STOP" : "e-stop ok"
-            ok: !strip.link.estop
+            text: !strip.link.stateKnown ? "e-stop unknown" : strip.link.estop ? "E-STOP" : "e-stop ok"
+            ok: strip.link.stateKnown && !strip.link.estop
         }
         Reading {
             objectName: "amplifier"
-            text: strip.link.amplifierFault ? "AMPLIFIER" : "amplifier ok"
-            ok: !strip.link.amplifierFault
+            text: !strip.link.stateKnown ? "amplifier unknown" : strip.link.amplifierFault ? "AMPLIFIER" : "amplifier ok"
+            ok: strip.link.stateKnown && !strip.link.amplifierFault
         }
         Reading {
             objectName: "modbus"
-            text: "Modbus " + strip.link.modbus
-            ok: strip.link.modbusOk
+            text: "Modbus " + (strip.link.stateKnown ? strip.link.modbus : "unknown")
+            ok: strip.link.stateKnown && strip.link.modbusOk
         }
         Reading {
             objectName: "overruns"

@@ -58,15 +58,19 @@ void DaemonLink::on_connected(bool up, const QString& why) {
   ever_connected_ = ever_connected_ || up;
   connected_ = up;
   problem_ = up ? QString() : why;
+  const bool forget = !up && state_known_;
   if (!up) {
     meter_.reset();
     rate_hz_ = 0.0;
+    state_known_ = false;
   }
   if (changed) emit connectedChanged();
+  if (forget) emit stateChanged();
 }
 
 void DaemonLink::on_state(const QVariantMap& state, double seconds) {
   state_ = state;
+  state_known_ = connected_;
   std::vector<std::string> names;
   for (const QString& f : state.value(QStringLiteral("faults")).toStringList()) names.push_back(f.toStdString());
   faults_ = read_faults(names);

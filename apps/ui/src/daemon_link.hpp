@@ -26,6 +26,9 @@ class DaemonLink : public QObject {
   // Why the link is down ("" while up).
   Q_PROPERTY(QString problem READ problem NOTIFY connectedChanged)
   Q_PROPERTY(QVariantMap state READ state NOTIFY stateChanged)
+  // A state read from hapticd on the connection that is up now: without one
+  // the strip says "unknown", never "ok", for what it has not read.
+  Q_PROPERTY(bool stateKnown READ stateKnown NOTIFY stateChanged)
   Q_PROPERTY(QVariantMap stats READ stats NOTIFY statsChanged)
   Q_PROPERTY(QString mode READ mode NOTIFY stateChanged)
   Q_PROPERTY(QStringList faults READ faults NOTIFY stateChanged)
@@ -48,6 +51,7 @@ class DaemonLink : public QObject {
   bool supervising() const { return supervising_; }
   QString problem() const { return problem_; }
   QVariantMap state() const { return state_; }
+  bool stateKnown() const { return state_known_; }
   QVariantMap stats() const { return stats_; }
   QString mode() const { return state_.value(QStringLiteral("mode")).toString(); }
   QStringList faults() const { return state_.value(QStringLiteral("faults")).toStringList(); }
@@ -86,6 +90,7 @@ class DaemonLink : public QObject {
   LinkWorker* worker_ = nullptr;
   bool connected_ = false, supervising_ = false;
   bool ever_connected_ = false;  // a later connection is news ("reconnected")
+  bool state_known_ = false;     // on_state since the connection came up
   QString problem_, telemetry_name_;
   QVariantMap state_, stats_;
   FaultReading faults_;

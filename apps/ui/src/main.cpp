@@ -44,7 +44,7 @@ int screenshot(QQuickWindow& window, knoblab::ui::DaemonLink& link, const knobla
   QElapsedTimer waited;
   waited.start();
   // A simulated study session runs until it pauses where it was asked to.
-  while ((link.state().isEmpty() || library.loading() || jobs.running() || study.settling()) &&
+  while ((!link.stateKnown() || library.loading() || jobs.running() || study.settling()) &&
          waited.elapsed() < static_cast<qint64>(o.wait_s * 1000))
     QCoreApplication::processEvents(QEventLoop::AllEvents, 50);
   // Let bindings settle and animations (the message bar's) finish.
@@ -70,7 +70,11 @@ int screenshot(QQuickWindow& window, knoblab::ui::DaemonLink& link, const knobla
     status = 1;
   }
   for (const QString& line : knoblab::ui::named_texts(window.contentItem())) std::printf("%s\n", qPrintable(line));
-  if (link.state().isEmpty()) std::fprintf(stderr, "knoblab-ui: no state from hapticd within %g s\n", o.wait_s);
+  // The PNG is written all the same: it shows what the kiosk shows then.
+  if (!link.stateKnown()) {
+    std::fprintf(stderr, "knoblab-ui: no state from hapticd within %g s\n", o.wait_s);
+    status = 1;
+  }
   if (study.settling()) {
     std::fprintf(stderr, "knoblab-ui: the study session did not reach %s within %g s\n", o.study_pause_at.c_str(),
                  o.wait_s);
@@ -141,6 +145,13 @@ int main(int argc, char** argv) {
   if (engine.rootObjects().isEmpty()) return 2;
   auto* window = qobject_cast<QQuickWindow*>(engine.rootObjects().first());
   if (!window) return 2;
+  // The screens are Main.qml's: a name it does not know is a bad option.
+  const QStringList screens = QStringList{QStringLiteral("home")} + window->property("screens").toMap().keys();
+  if (!screens.contains(QString::fromStdString(o.screen))) {
+    std::fprintf(stderr, "knoblab-ui: --screen: no screen called %s (screens: %s)\n", o.screen.c_str(),
+                 qPrintable(screens.join(QStringLiteral(", "))));
+    return 2;
+  }
   // Opened before the first frame, so a screenshot shows it (or why not, in the message bar).
   if (!o.design.empty()) designs.open(QString::fromStdString(o.design), false);
   if (!o.study_protocol.empty())

@@ -74,9 +74,14 @@ UiOptions parse_ui_options(const std::vector<std::string>& args) {
       throw std::invalid_argument("unknown option '" + a + "'");
     }
   }
-  if (o.studies.empty())
-    o.studies = std::filesystem::is_directory(KNOBLAB_UI_STUDIES_DIR) ? KNOBLAB_UI_STUDIES_DIR
-                                                                       : KNOBLAB_UI_SOURCE_STUDIES_DIR;
+  if (o.studies.empty()) {
+    // Installed, or beside the program in a build tree (the build copies
+    // examples/studies there): no path of the checkout is built in.
+    std::error_code ec;
+    const auto beside = std::filesystem::read_symlink("/proc/self/exe", ec).parent_path() / "studies";
+    o.studies = std::filesystem::is_directory(KNOBLAB_UI_STUDIES_DIR) || ec ? KNOBLAB_UI_STUDIES_DIR
+                                                                            : beside.string();
+  }
   return o;
 }
 

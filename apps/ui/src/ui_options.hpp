@@ -22,7 +22,7 @@ struct UiOptions {
   // atomically: how a test or a remote look tells what the kiosk displays.
   std::string status_file;
   // The study protocols offered (default: where the package installs them,
-  // or the source tree's examples/studies when that is missing).
+  // or, in a build tree, the copy of examples/studies beside the program).
   std::string studies;
   // Start this participant's session of this protocol at once; with
   // study_simulate in simulated time (hapticd's core and the simulated

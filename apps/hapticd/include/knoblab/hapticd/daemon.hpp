@@ -45,6 +45,9 @@ struct DaemonConfig {
   std::size_t telemetry_decimation = 10;
   std::optional<modbus::PollerConfig> modbus;  // amplifier + biometrics; none = not wired
   std::string knob;                   // default knob name for captures
+  // The sim backend's guided hand (its shared-memory channel), which a
+  // simulated participant steers; empty: none (get_state's hand_channel).
+  std::string hand_channel;
   // Render model loaded at start (hapticd --model FILE): rendered once the
   // mode is set to render, and the base later set_params calls change.
   std::optional<RenderParams> initial_model;

@@ -192,6 +192,9 @@ class Recorder {
   bool bio_open_ = false;          // a recording is open: biometrics are kept
   std::vector<store::BiometricSample> bio_;
   double start_s_ = 0.0;           // CLOCK_MONOTONIC of the open recording's t = 0
+  // The box's counter restarts with the box (or wraps): its samples keep
+  // their order in the recording through an offset added from then on.
+  std::int64_t bio_seq_offset_ = 0, bio_last_seq_ = -1;
 
   std::atomic<std::uint64_t> buffered_{0}, max_buffered_{0}, capacity_{0}, retries_{0}, failed_{0};
 };
