@@ -170,8 +170,10 @@ class Console:
 
 
 def parse_json(text):
+    """The first JSON object in text; what follows it is not its business (a
+    second command's output, or a service's line on the console)."""
     i = text.find("{")
-    return json.loads(text[i:]) if i >= 0 else None
+    return json.JSONDecoder().raw_decode(text[i:])[0] if i >= 0 else None
 
 
 def sql(con, query):
@@ -518,8 +520,11 @@ def check_amp_enabled(con, check):
 
 def restart_hapticd(con, timeout=300):
     """systemctl restart hapticd, then get_state once it answers with its
-    loop running ({} if it never did)."""
-    con.run("systemctl daemon-reload && systemctl restart hapticd", timeout=120)
+    loop running ({} if it never did). knoblab-ready restarts with it (it
+    requires hapticd) and prints "appliance ready" on this console: restarted
+    here by name, systemctl returns once it has, so that line cannot fall into
+    a later command's output."""
+    con.run("systemctl daemon-reload && systemctl restart hapticd knoblab-ready", timeout=600)
     deadline = time.monotonic() + timeout
     while time.monotonic() < deadline:
         rc, out = con.run(f"{CTL} get_state 2>/dev/null")
@@ -549,10 +554,12 @@ def check_overrun(con, report, check):
                 break
             time.sleep(1)
         time.sleep(1)  # the safe state is taken in the cycle that latched; give the line a moment
-        rc, out = con.run(f"{LINE} AMP_EN; {LINE} LED_STATUS; {CTL} get_state; {CTL} set_mode mode=render")
+        rc, out = con.run(f"{LINE} AMP_EN; {LINE} LED_STATUS")
         lines = out.strip().splitlines()
+        rc, out = con.run(f"{CTL} get_state")
         after = parse_json(out) or {}
-        refused = "fault is latched" in out
+        rc, out = con.run(f"{CTL} set_mode mode=render 2>&1")
+        refused = rc != 0 and "fault is latched" in out
     finally:
         con.run(f"rm -f {OVERRUN_DROPIN}")
         again = restart_hapticd(con)
