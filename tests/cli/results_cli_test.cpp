@@ -135,16 +135,17 @@ TEST_F(ResultsCli, ListsFitsAndDiscrepancyResultsTogetherAndWritesOneOutWhole) {
   RunResult r = run_knoblab({"results", "--db", db_});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err, "");
-  std::string version = knoblab::kVersion;
+  const std::string version = knoblab::kVersion;
   ASSERT_EQ(lines_starting(r.out, "kind ").size(), 1u) << r.out;
   const auto fit_rows = lines_starting(r.out, "fit               1        1  ");
   ASSERT_EQ(fit_rows.size(), 1u) << r.out;
-  version.resize(25, ' ');
-  EXPECT_NE(fit_rows[0].find("  " + version + "    18  rmse "), std::string::npos) << fit_rows[0];
+  std::string column = version;  // the table's version column is 25 wide
+  column.resize(25, ' ');
+  EXPECT_NE(fit_rows[0].find("  " + column + "    18  rmse "), std::string::npos) << fit_rows[0];
   EXPECT_NE(fit_rows[0].find(" mN·m, 12.00 detents/rev"), std::string::npos) << fit_rows[0];
   const auto d_rows = lines_starting(r.out, "discrepancy       1        1  ");
   ASSERT_EQ(d_rows.size(), 1u) << r.out;
-  EXPECT_NE(d_rows[0].find("  " + version + "    21  held-out rms "), std::string::npos) << d_rows[0];
+  EXPECT_NE(d_rows[0].find("  " + column + "    21  held-out rms "), std::string::npos) << d_rows[0];
   EXPECT_LT(r.out.find("\nfit "), r.out.find("\ndiscrepancy "));  // oldest first
 
   r = run_knoblab({"results", "--db", db_, "--json"});

@@ -148,6 +148,44 @@ TEST(Core, ExternalFaultsAndForcedSafeLatchUntilClearedAndNothingResumesByItself
   EXPECT_EQ(core.state().faults, kFaultWatchdog);
 }
 
+// The watchdog's and the store's safe-state requests once went through the
+// command queue and were dropped when it was full. They cannot be now: the
+// queue full (a ClearFault queued in it, too), the motor is safe in the
+// very next cycle and stays so.
+TEST(Core, ASafeStateRequestIsTakenInTheNextCycleHoweverFullTheCommandQueue) {
+  capture::SimDaq daq(plant("moderate-detents"), 10000.0);
+  HapticCore core(config(daq));
+  CoreCommand c;
+  c.kind = CoreCommand::SetMode;
+  c.mode = Mode::Render;
+  ASSERT_TRUE(core.post(c));
+  auto step = [&] {
+    capture::DaqInputs in;
+    capture::DaqOutputs out;
+    LoopRecord rec;
+    EXPECT_EQ(daq.read(in), capture::IoStatus::ok);
+    core.cycle(in, {}, out, rec);
+    EXPECT_EQ(daq.write(out), capture::IoStatus::ok);
+    return out;
+  };
+  for (int i = 0; i < 10; ++i) ASSERT_TRUE(step().amp_enable);
+  c.kind = CoreCommand::ClearFault;
+  ASSERT_TRUE(core.post(c));
+  c.kind = CoreCommand::SetRender;
+  int queued = 1;
+  while (core.post(c)) ++queued;
+  EXPECT_GE(queued, 8);
+  EXPECT_FALSE(core.post(c)) << "the queue is full";
+  core.request_safe(kFaultWatchdog);
+  const capture::DaqOutputs out = step();
+  EXPECT_FALSE(out.amp_enable);
+  EXPECT_EQ(out.motor_command_V, 0.0);
+  EXPECT_EQ(core.state().faults, kFaultWatchdog);
+  EXPECT_EQ(core.state().mode, Mode::Idle);
+  for (int i = 0; i < 20; ++i) EXPECT_FALSE(step().amp_enable);  // the queue drains; still latched
+  EXPECT_EQ(core.state().faults, kFaultWatchdog);
+}
+
 // A hand turning the knob at a steady 2 rad/s: encoder counts only.
 capture::DaqInputs turned_by_hand(const capture::SensorCalibration& cal, int cycle) {
   capture::DaqInputs in;

@@ -93,6 +93,50 @@ TEST(Daemon, CapturesSixSecondsAtTenKilohertzWithoutLoss) {
   EXPECT_GT(hi, 0.9);
 }
 
+// A study trial that spans a mode change (the kiosk's home tap, the
+// library's "Feel it"): idle stamps t from the daemon's start, render from
+// when it was entered, and the render part was once refused as out of order
+// (10 002 of 35 001 records stored). The recording has one clock, from its
+// first record: every record taken is stored, a cycle apart.
+TEST(Daemon, ARecordingAcrossIdleAndRenderStoresEveryRecordTakenOnOneClock) {
+  TempDb db;
+  std::int64_t capture_id = 0;
+  std::int64_t samples = 0;
+  {
+    Rig rig(db.path(), "moderate-detents");
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));  // idle's clock is well past 0
+    CoreCommand c;
+    c.kind = CoreCommand::StartRecording;
+    ASSERT_TRUE(rig.daemon->post(c));
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    c.kind = CoreCommand::SetMode;
+    c.mode = Mode::Render;
+    ASSERT_TRUE(rig.daemon->post(c));
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    c.mode = Mode::Idle;
+    ASSERT_TRUE(rig.daemon->post(c));
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    c.kind = CoreCommand::StopRecording;
+    ASSERT_TRUE(rig.daemon->post(c));
+    const auto f = rig.wait_finished(std::chrono::seconds(10));
+    ASSERT_EQ(f.size(), 1u);
+    EXPECT_TRUE(f[0].complete) << f[0].end_reason;
+    capture_id = f[0].capture_id;
+    samples = f[0].samples;
+  }
+  store::Store s = store::Store::open(db.path());
+  const interchange::Capture c = s.load_samples(capture_id);
+  ASSERT_EQ(static_cast<std::int64_t>(c.size()), samples);
+  ASSERT_GT(c.size(), 5000u);  // 0.8 s of it at 10 kHz, at the least
+  std::size_t rendered = 0;
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    ASSERT_EQ(c.t[i], static_cast<double>(i) * (1.0 / 10000.0)) << i;
+    if (c.flags[i] & interchange::kAmpEnabled) ++rendered;
+  }
+  EXPECT_GT(rendered, 1000u) << "the render part is in it";
+  EXPECT_LT(rendered, c.size() - 1000u) << "and the idle parts on both sides";
+}
+
 // Acceptance: the e-stop pulled mid-render zeroes the torque command in the
 // same or the next cycle and drops amplifier enable, visibly in the samples.
 TEST(Daemon, EstopMidRenderIsVisibleInTheRecordedSamples) {

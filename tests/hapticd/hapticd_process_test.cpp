@@ -189,6 +189,18 @@ TEST(HapticdProcess, UnstorableTextAndACaptureOfNoCycleAreRefusedAndHapticdLives
   EXPECT_EQ(d.terminate(), 0) << d.log();
 }
 
+// A desktop user saw the overruns fault latch and clear_fault not stick,
+// with nothing in get_state to say why: it carries the evidence and the limit.
+TEST(HapticdProcess, GetStateShowsTheOverrunsTheLongestRunOfThemAndTheLimit) {
+  Hapticd d({"--rate", "1000", "--max-overruns", "7"});
+  control::Client c(d.socket(), std::chrono::seconds(5));
+  c.hello();
+  const nlohmann::json o = c.call("get_state").at("overruns");
+  EXPECT_EQ(o.at("limit"), 7) << o.dump();
+  EXPECT_GE(o.at("total").get<std::int64_t>(), o.at("max_consecutive").get<std::int64_t>()) << o.dump();
+  EXPECT_EQ(d.terminate(), 0) << d.log();
+}
+
 // Runs one capture over the protocol, checks that the reply promises
 // `samples`, and returns its capture_finished event. This host is not
 // realtime: eleven cycles in a row whose work outlasts its 100 µs period under

@@ -242,7 +242,7 @@ TEST(Recorder, KeepsEverySampleWhileAnotherConnectionHoldsTheWriteLock) {
   other.exec("BEGIN IMMEDIATE");  // e.g. an import's transaction
   feed(rec, 0, 100, 0);
   feed(rec, 100, 20100, 1);
-  store::BiometricSample b{7, 1.5, 1e-6, 2e-6, 3e-6};  // monotonic 1.5 s = t 0.5 s
+  store::BiometricSample b{7, 1.5, 1e-6, 2e-6, 3e-6};  // monotonic 1.5 s = t 0.49 s
   rec.add_biometrics(b);
   feed(rec, 20100, 20200, 0);
   for (int i = 0; i < 5; ++i) rec.pump();
@@ -267,10 +267,11 @@ TEST(Recorder, KeepsEverySampleWhileAnotherConnectionHoldsTheWriteLock) {
   EXPECT_EQ(info->sample_count, 20000);
   const auto c = r.load_samples(fin[0].capture_id);
   ASSERT_EQ(c.size(), 20000u);
-  for (std::size_t i = 0; i < c.size(); ++i) ASSERT_EQ(c.t[i], static_cast<double>(i + 100) * 1e-4);
+  // On the recording's clock: from its first record (cycle 100, 1.01 s).
+  for (std::size_t i = 0; i < c.size(); ++i) ASSERT_EQ(c.t[i], static_cast<double>(i) * 1e-4);
   const auto bio = r.load_biometrics(fin[0].capture_id);
   ASSERT_EQ(bio.size(), 1u);
-  EXPECT_NEAR(bio[0].t, 0.5, 1e-9);
+  EXPECT_NEAR(bio[0].t, 0.49, 1e-9);
   const RecorderStats after = rec.stats();
   EXPECT_EQ(after.buffered, 0u);
   EXPECT_EQ(after.max_buffered, 20000u);
@@ -285,7 +286,8 @@ TEST(Recorder, ABiometricsBoxWhoseCounterRestartsMidRecordingKeepsEverySampleInO
   Recorder rec(&s, defaults());
   feed(rec, 0, 100, 0);
   feed(rec, 100, 2100, 1);
-  // monotonic 1.0 s is t = 0; the box restarts after its sample 42.
+  // The recording's t = 0 is its first record's monotonic 1.01 s; the box
+  // restarts after its sample 42.
   const std::vector<std::pair<std::int64_t, double>> box = {{40, 1.01}, {41, 1.02}, {42, 1.03}, {0, 1.10}, {1, 1.11}};
   for (const auto& [counter, when] : box) rec.add_biometrics({counter, when, 1e-6, 2e-6, 3e-6});
   feed(rec, 2100, 2200, 0);
@@ -298,7 +300,7 @@ TEST(Recorder, ABiometricsBoxWhoseCounterRestartsMidRecordingKeepsEverySampleInO
   ASSERT_EQ(bio.size(), box.size());
   for (std::size_t i = 0; i < bio.size(); ++i) {
     EXPECT_EQ(bio[i].seq, 40 + static_cast<std::int64_t>(i)) << i;
-    EXPECT_NEAR(bio[i].t, box[i].second - 1.0, 1e-9) << i;
+    EXPECT_NEAR(bio[i].t, box[i].second - 1.01, 1e-9) << i;
   }
 }
 

@@ -107,6 +107,12 @@ json ControlHandler::state_json() const {
   j["hand_channel"] = daemon_.config().hand_channel.empty() ? json(nullptr) : json(daemon_.config().hand_channel);
   j["modbus"] = modbus::status::describe(daemon_.modbus_status());
   j["ring_dropped"] = daemon_.ring_dropped();
+  // The overruns fault's evidence, also when the fault is latched or gone:
+  // cycles that outlasted their period, the longest run of them, the limit.
+  const rt::TimingSummary t = rt::summarize(daemon_.stats().read());
+  j["overruns"] = {{"total", t.overruns},
+                   {"max_consecutive", t.max_consecutive_overruns},
+                   {"limit", daemon_.config().core.limits.max_consecutive_overruns}};
   j["tiles"] = tiles_;
   const RecorderStats r = daemon_.recorder_stats();
   j["recorder"] = {{"buffered", r.buffered}, {"max_buffered", r.max_buffered}, {"capacity", r.capacity},
@@ -335,12 +341,7 @@ Reply ControlHandler::handle(const control::Request& r) {
   return Reply::success();
 }
 
-void ControlHandler::on_watchdog_expired(control::WatchdogReason) {
-  CoreCommand c;
-  c.kind = CoreCommand::ForceSafe;
-  c.faults = kFaultWatchdog;
-  daemon_.post(c);
-}
+void ControlHandler::on_watchdog_expired(control::WatchdogReason) { daemon_.force_safe(kFaultWatchdog); }
 
 void ControlHandler::publish_events(control::Server& server, const std::vector<FinishedRecording>& finished) {
   std::lock_guard lock(mutex_);

@@ -142,6 +142,8 @@ void HapticCore::cycle(const capture::DaqInputs& in, const CycleContext& ctx, ca
   // pop_slot_ is built once: a CoreCommand holds controllers whose default
   // construction designs filters (allocates), which the loop must not do.
   for (int i = 0; i < 4 && commands_.try_pop(pop_slot_); ++i) apply(pop_slot_);
+  // After the commands: a ClearFault queued earlier cannot undo a request.
+  forced_ |= safe_requests_.exchange(0, std::memory_order_acquire);
   render_.take_tiles();
 
   const capture::SensorReading& sensed = sensors_.update(in);

@@ -129,6 +129,8 @@ bool Daemon::post(const CoreCommand& c) {
   return false;
 }
 
+void Daemon::force_safe(std::uint32_t why) noexcept { core_->request_safe(why); }
+
 bool Daemon::start_capture(const capture::CaptureConfig& cc, double seconds, const CaptureLabels& labels,
                            std::string& why) {
   const CoreState s = core_->state();
@@ -366,15 +368,9 @@ void Daemon::writer_main() {
     }
     if (recorder_->safe_state_needed()) {
       // A recording the store cannot take: the motor must not go on being
-      // driven for it. Safe first, then end the capture (or recording).
-      CoreCommand c;
-      c.kind = CoreCommand::ForceSafe;
-      c.faults = kFaultRecording;
-      post(c);
-      c.kind = CoreCommand::StopCapture;
-      post(c);
-      c.kind = CoreCommand::StopRecording;
-      post(c);
+      // driven for it. The fault it latches ends the capture or recording
+      // in the same cycle.
+      force_safe(kFaultRecording);
     }
     collect_finished_calibrations();
     // Read before the finished list, so that nothing the store thread

@@ -77,10 +77,13 @@ void Recorder::start(const LoopRecord& r) {
   }
   rec.info.has_command = true;
   if (rec.info.source.empty()) rec.info.source = "hapticd";
+  rec.first_seq = r.seq;
+  const double rate = rec.info.rate_hz > 0 ? rec.info.rate_hz : defaults_.rate_hz > 0 ? defaults_.rate_hz : 10000.0;
+  rec.dt = 1.0 / rate;
   recordings_.push_back(std::move(rec));
   std::lock_guard lock(bio_mutex_);
   bio_.clear();
-  start_s_ = static_cast<double>(r.now_ns) * 1e-9 - r.sample.t;
+  start_s_ = static_cast<double>(r.now_ns) * 1e-9;  // the recording's t = 0
   bio_seq_offset_ = 0;
   bio_last_seq_ = -1;
   bio_open_ = true;
@@ -140,9 +143,13 @@ void Recorder::take(const LoopRecord& r) {
   // samples are good, but not the capture that was asked for.
   if (r.end == RecordingEnd::stopped) rec.stopped = true;
   ++rec.taken;
-  rec.last_t = r.sample.t;
+  // A trial that spans idle and render once lost its render samples: the
+  // mode's own t went back to 0 and the store refused them as out of order.
+  store::Sample sample = r.sample;
+  sample.t = static_cast<double>(r.seq - rec.first_seq) * rec.dt;
+  rec.last_t = sample.t;
   if (!store_) return;
-  rec.samples.push_back(r.sample);
+  rec.samples.push_back(sample);
   ++queued_;
   const std::uint64_t buffered = buffered_.load(std::memory_order_relaxed) + 1;
   buffered_.store(buffered, std::memory_order_relaxed);

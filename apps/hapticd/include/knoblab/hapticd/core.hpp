@@ -127,6 +127,11 @@ class HapticCore {
 
   // Non-realtime side. False when the queue is full (retry later).
   bool post(const CoreCommand& c) { return commands_.try_push(c); }
+  // Any thread, never fails and never waits (no queue to fill): the loop
+  // latches these fault bits at its next cycle and the supervisor makes the
+  // motor safe in it, as a ForceSafe command would. For the watchdog and
+  // the store's refusal, which must not be lost behind a full queue.
+  void request_safe(std::uint32_t faults) noexcept { safe_requests_.fetch_or(faults, std::memory_order_release); }
   // Prototyper tiles rendered on top of the model from the next cycle on
   // (nullptr clears them). False while the loop has not yet taken the
   // previous set (it does so every cycle); `tiles` then stays with the
@@ -169,6 +174,7 @@ class HapticCore {
   Mode mode_ = Mode::Idle;
   bool clear_requested_ = false;
   std::uint32_t forced_ = 0;
+  std::atomic<std::uint32_t> safe_requests_{0};  // request_safe(), taken every cycle
   // A stop that arrived this cycle: applied after the cycle's record is made.
   bool stop_pending_ = false;
   Mode mode_after_stop_ = Mode::Idle;

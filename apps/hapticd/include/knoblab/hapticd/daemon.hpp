@@ -94,6 +94,9 @@ class Daemon {
     return start_capture(cfg, seconds, CaptureLabels{knob, "lab", nlohmann::json::object()}, why);
   }
   bool post(const CoreCommand& c);
+  // The motor safe from the loop's next cycle, latching `why` (Fault bits):
+  // from any thread, and it cannot be lost, however full the command queue.
+  void force_safe(std::uint32_t why) noexcept;
   // Starts a calibration run (kinds: see calibration_controller.hpp). The
   // loop's rate, the sensor calibration in use and the torque-per-volt come
   // from the daemon's config; the rest (durations, PID) from `cfg`. The run

@@ -148,6 +148,10 @@ class Recorder {
     std::vector<store::BiometricSample> bio;
     bool bio_saved = false;       // store thread
     double last_t = 0.0;          // t of its newest sample
+    // Its clock: t = (cycle − first_seq) · dt, whatever modes it spans
+    // (render starts its own clock when entered, idle counts from start).
+    std::uint64_t first_seq = 0;
+    double dt = 0.0;
     double uncommitted_t = 0.0;   // store thread: t of the oldest sample the writer holds uncommitted
   };
 
