@@ -82,6 +82,17 @@ TEST(DesignJson, AFileThatIsNotJsonNamesTheFile) {
   }
 }
 
+TEST(DesignJson, ADesignNestedBeyondSixtyFourLevelsIsRefusedNamingTheFile) {
+  const auto file = scratch("deep.json");
+  std::ofstream(file) << "{\"palette\": " << std::string(1000000, '[') << std::string(1000000, ']') << "}";
+  try {
+    read_design(file);
+    FAIL() << "accepted";
+  } catch (const jsonread::PathError& e) {
+    EXPECT_THAT(e.what(), HasSubstr(file.string() + ": not JSON we read: nested deeper than 64 levels at byte 76"));
+  }
+}
+
 TEST(DesignJson, ASaveThatCannotBeWrittenLeavesTheOldFileWhole) {
   const auto dir = scratch("ro");
   std::filesystem::create_directories(dir);

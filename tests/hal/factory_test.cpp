@@ -192,5 +192,24 @@ TEST(ConfigText, LoadsAFileOrNamesIt) {
             missing.string() + ": cannot read the configuration file");
 }
 
+
+// A document nested a million levels deep: the parser and everything that
+// walks what it builds recurse, and the reader segfaulted on it.
+std::string nested_a_million_deep() {
+  return "{\"daq\": " + std::string(1000000, '[') + std::string(1000000, ']') + "}";
+}
+
+TEST(Factory, AConfigNestedBeyondSixtyFourLevelsIsRefusedBeforeItIsParsed) {
+  try {
+    parse_config_text(nested_a_million_deep(), "hapticd.json");
+    FAIL() << "accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("hapticd.json: invalid JSON: nested deeper than 64 levels at byte 72"));
+  }
+  // A bracket in a string is text, not nesting.
+  EXPECT_NO_THROW(parse_config_text(R"({"daq": {"knob": "[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[\"{{"}})",
+                                    "hapticd.json"));
+}
+
 }  // namespace
 }  // namespace knoblab::hal

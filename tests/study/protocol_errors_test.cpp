@@ -50,6 +50,16 @@ void expect_refused(const std::string& name, const std::string& pointer, const j
 
 const json kRemove = json(json::value_t::discarded);
 
+TEST(ProtocolErrors, AProtocolNestedBeyondSixtyFourLevelsIsRefusedBeforeItIsParsed) {
+  const std::string deep = "{\"study\": " + std::string(1000000, '[') + std::string(1000000, ']') + "}";
+  try {
+    parse_protocol_text(deep);
+    FAIL() << "accepted";
+  } catch (const ProtocolError& e) {
+    EXPECT_EQ(e.message(), "not JSON we read: nested deeper than 64 levels at byte 74");
+  }
+}
+
 TEST(ProtocolErrors, ARenderingAboveTheKnobsLimitNamesTheParameterAndSaysSi) {
   // 2.6 is Table 19's damping in mN·m/(rad/s), written without converting.
   expect_refused("list-selection.json", "/factors/1/levels/0/parameters/B_vel", 2.6,

@@ -3,11 +3,13 @@
 #include <cstdio>
 #include <fstream>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <system_error>
 #include <vector>
 
 #include "knoblab/design/curve.hpp"
+#include "knoblab/jsonread/nesting.hpp"
 
 namespace knoblab::design {
 
@@ -182,9 +184,12 @@ Design read_design(const std::filesystem::path& file) {
   std::ifstream in(file);
   if (!in) throw PathError("", "cannot read " + file.string());
   try {
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (const auto deep = jsonread::nesting_problem(text.view())) throw PathError("", "not JSON we read: " + *deep);
     json j;
     try {
-      j = json::parse(in);
+      j = json::parse(text.view());
     } catch (const json::parse_error& e) {
       throw PathError("", std::string("not JSON: ") + e.what());
     }

@@ -11,6 +11,7 @@
 #include "knoblab/hal/gpiod_lines.hpp"
 #include "knoblab/hal/memory_lines.hpp"
 #include "knoblab/hal/shared_hand_channel.hpp"
+#include "knoblab/jsonread/nesting.hpp"
 #include "knoblab/sim/hand.hpp"
 #include "knoblab/sim/presets.hpp"
 
@@ -105,6 +106,8 @@ std::unique_ptr<DigitalLines> make_lines(const nlohmann::json& config, std::stri
 }
 
 nlohmann::json parse_config_text(std::string_view text, std::string_view origin) {
+  if (const auto deep = jsonread::nesting_problem(text))
+    throw ConfigError(std::string(origin) + ": invalid JSON: " + *deep);
   try {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "json_reader.hpp"
+#include "knoblab/jsonread/nesting.hpp"
 #include "parse_parts.hpp"
 
 namespace knoblab::study {
@@ -255,6 +256,7 @@ Protocol parse_protocol(const nlohmann::json& file) {
 }
 
 Protocol parse_protocol_text(std::string_view text) {
+  if (const auto deep = jsonread::nesting_problem(text)) throw ProtocolError("", "not JSON we read: " + *deep);
   nlohmann::json file;
   try {
     file = nlohmann::json::parse(text);
